@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// Scene files, format v1 (docs/scene_format.md): JSON → Scene (plain data) → World.
+// Every error names the file, the JSON pointer, what was found and what was expected.
+#pragma once
+
+#include "supermodal/body.h"
+#include "supermodal/result.h"
+#include "supermodal/world.h"
+
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace supermodal
+{
+
+/// A named material. Contact and modal fields are read and checked now, used by later stages.
+struct MaterialDef {
+    std::string name;
+    double density = 1000.0;                                       ///< [kg/m³], > 0.
+    double young = 1e9;                                            ///< Young's modulus [Pa], > 0.
+    double poisson = 0.3;                                          ///< Poisson's ratio [-], in (−1, 0.5).
+    double friction = 0.5;                                         ///< Coulomb coefficient [-], ≥ 0.
+    double restitution = 0.2;                                      ///< [-], in [0, 1].
+    double damping_ratio = 0.01;                                   ///< Modal damping ratio [-], ≥ 0.
+    double yield_stress = std::numeric_limits<double>::infinity(); ///< von Mises yield [Pa], > 0.
+};
+
+/// How a scene body deforms; only rigid bodies run until the modal issue lands.
+enum class DynamicsType : uint8_t { Rigid, Modal, Auto };
+
+/// One body of a scene: its BodyDef plus the scene-level fields.
+struct SceneBody {
+    BodyDef def;
+    std::string material; ///< Material name, or empty for the default material.
+    DynamicsType dynamics = DynamicsType::Rigid;
+};
+
+/// A parsed, validated scene.
+struct Scene {
+    std::string source; ///< File it came from, or "<string>".
+    WorldDef world = default_world_def();
+    double duration = 5.0;              ///< Default run length [s], > 0.
+    std::vector<MaterialDef> materials; ///< In file order.
+    std::vector<SceneBody> bodies;      ///< In file order; creation order in the world.
+};
+
+/// Reads and validates a scene file.
+[[nodiscard]] Result<Scene> load_scene(const std::string& path);
+/// Parses and validates scene JSON text; `source` names it in errors.
+[[nodiscard]] Result<Scene> parse_scene(std::string_view json_text, const std::string& source = "<string>");
+/// Makes a world holding the scene's bodies, created in file order.
+[[nodiscard]] Result<World> build_world(const Scene& scene);
+
+} // namespace supermodal

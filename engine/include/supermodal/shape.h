@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// Shapes a body can have, and their mass properties. A superquadric's own frame follows Barr:
+// z is the polar axis, radii (a1, a2, a3) lie along (x, y, z).
+#pragma once
+
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+
+#include <cstdint>
+
+namespace supermodal
+{
+
+/// Which kind of shape a ShapeDef describes.
+enum class ShapeType : uint8_t {
+    Superquadric, ///< Barr superquadric; ε = 1 ellipsoid, ε → 0 box, ε = 2 octahedron, ε > 2 concave.
+    Plane,        ///< Half-space {x : normal·x ≤ offset}; static bodies only.
+};
+
+/// Barr taper along the polar axis (z): x, y scale by (1 + k·z/a3).
+struct Taper {
+    double kx = 0.0; ///< Taper factor along x [-], valid range [-1, 1].
+    double ky = 0.0; ///< Taper factor along y [-], valid range [-1, 1].
+};
+
+/// Barr bend of the polar axis (z) in the plane at `angle` from x.
+struct Bend {
+    double curvature = 0.0; ///< Bend curvature [1/m], ≥ 0.
+    double angle = 0.0;     ///< Bending-plane angle about z [rad].
+};
+
+/// How to make a shape. Start from default_shape_def() and change what differs.
+struct ShapeDef {
+    ShapeType type = ShapeType::Superquadric;
+    Vec3 radii{0.5, 0.5, 0.5};  ///< Superquadric radii a1, a2, a3 [m], shape frame, each > 0.
+    double epsilon1 = 1.0;      ///< Superquadric north-south exponent ε1 [-], in (0, 4].
+    double epsilon2 = 1.0;      ///< Superquadric east-west exponent ε2 [-], in (0, 4].
+    Taper taper{};              ///< Stored for the geometry layer; not yet used by dynamics.
+    Bend bend{};                ///< Stored for the geometry layer; not yet used by dynamics.
+    Vec3 plane_normal{0, 1, 0}; ///< Plane outward normal, world frame, non-zero (normalised on use).
+    double plane_offset = 0.0;  ///< Plane offset along the normal [m].
+};
+
+/// The documented starting point: a unit-diameter sphere.
+[[nodiscard]] ShapeDef default_shape_def();
+
+/// Checks ranges: radii > 0 and finite, ε in (0, 4], taper in [-1, 1], plane normal non-zero.
+[[nodiscard]] Status validate(const ShapeDef& def);
+
+/// Mass, centre of mass and principal inertia of a solid of uniform density.
+struct MassProperties {
+    double volume = 0.0;     ///< [m³].
+    double mass = 0.0;       ///< [kg].
+    Vec3 center_of_mass{};   ///< Shape frame [m]; zero for untapered, unbent superquadrics.
+    Vec3 inertia_diagonal{}; ///< Principal moments about the centre of mass [kg·m²], shape axes.
+};
+
+/// Closed-form volume of a superquadric: V = 2·a1·a2·a3·ε1·ε2·B(ε1/2+1, ε1)·B(ε2/2, ε2/2) [m³].
+[[nodiscard]] double superquadric_volume(const ShapeDef& def);
+
+/// Closed-form mass properties (Jaklič, Leonardis & Solina 2000, Beta functions) for density ρ [kg/m³].
+/// Planes have no finite mass: returns zeros.
+[[nodiscard]] MassProperties compute_mass_properties(const ShapeDef& def, double density);
+
+} // namespace supermodal

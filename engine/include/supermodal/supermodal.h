@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: MIT
+// Everything public, in one include.
+#pragma once
+
+#include "supermodal/assert.h"
+#include "supermodal/body.h"
+#include "supermodal/entity.h"
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+#include "supermodal/scene.h"
+#include "supermodal/shape.h"
+#include "supermodal/world.h"

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// The World owns bodies and runs the fixed step. Its members are the whole-world verbs only;
+// everything about one body is a free function in body.h.
+#pragma once
+
+#include "supermodal/entity.h"
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace supermodal
+{
+
+/// How to make a world. Start from default_world_def() and change what differs.
+struct WorldDef {
+    double dt = 0.002;              ///< Fixed step [s], > 0. Penalty contact wants small steps.
+    int substep_count = 1;          ///< Substeps per step [-], ≥ 1; each integrates dt / substep_count.
+    Vec3 gravity{0.0, -9.81, 0.0};  ///< [m/s²], world frame (Y-up).
+    int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
+                                    ///< dropping the rest of the backlog so a slow frame cannot spiral.
+};
+
+/// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
+[[nodiscard]] WorldDef default_world_def();
+
+/// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1.
+[[nodiscard]] Status validate(const WorldDef& def);
+
+/// The named stages of one step, in the order step() runs them.
+enum class Stage : uint8_t {
+    IntegrateForces,    ///< Gravity and applied forces into velocities.
+    Broadphase,         ///< Candidate pairs (contact issue).
+    Narrowphase,        ///< Contact points (contact issue).
+    PenaltyForces,      ///< Contact and constraint springs (contact and constraints issues).
+    ModalUpdate,        ///< Modal amplitudes (modal issue).
+    IntegratePositions, ///< Velocities into poses; implicit gyroscopic term.
+    UpdateSurfaces,     ///< Derived data: deformed surfaces, world bounds.
+    Events,             ///< Non-finite checks and host callbacks.
+    Count
+};
+
+/// Human-readable stage name ("integrate_forces").
+[[nodiscard]] std::string_view stage_name(Stage stage);
+
+/// Time spent per stage, summed over the last step's substeps [ms].
+struct StepProfile {
+    std::array<double, static_cast<size_t>(Stage::Count)> stage_ms{};
+    double total_ms = 0.0; ///< Wall time of the last step [ms].
+};
+
+/// Counts of run-time numerical trouble since the world was made; the step never fails.
+struct StepWarnings {
+    uint64_t non_finite_bodies = 0;    ///< Bodies frozen because their state turned NaN/Inf.
+    Entity last_non_finite{};          ///< The last body frozen for that reason.
+    uint64_t gyroscopic_fallbacks = 0; ///< Spins too fast for the implicit midpoint solve (see docs).
+};
+
+/// A saved copy of the world's dynamic state. Treat as opaque; restore() it into the same world.
+struct Snapshot {
+    double time = 0.0;
+    uint64_t step_count = 0;
+    double accumulator = 0.0;
+    std::vector<Entity> entities; ///< Bodies in index order.
+    std::vector<double> values;   ///< Packed per-body state, k_values_per_body each.
+};
+
+/// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.
+class World
+{
+  public:
+    explicit World(const WorldDef& def = default_world_def());
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    /// Advances the simulation by one fixed step of settings().dt.
+    void step();
+    /// Adds real_seconds [s] to the accumulator and runs the whole steps it holds (at most
+    /// max_steps_per_advance). Returns the number of steps run.
+    int advance(double real_seconds);
+    /// Fraction of a step left in the accumulator [-], in [0, 1): blend previous and current poses.
+    [[nodiscard]] double interpolation_alpha() const;
+
+    /// FNV-1a over the dynamic state in entity-index order: same scene + same build → same hash.
+    [[nodiscard]] uint64_t state_hash() const;
+    [[nodiscard]] Snapshot snapshot() const;
+    /// Restores a snapshot of this world; fails if bodies were created or destroyed since.
+    Status restore(const Snapshot& snapshot);
+
+    [[nodiscard]] const WorldDef& settings() const;
+    [[nodiscard]] double time() const;         ///< Simulated time [s].
+    [[nodiscard]] uint64_t step_count() const; ///< Steps run since creation.
+    [[nodiscard]] const StepProfile& profile() const;
+    [[nodiscard]] const StepWarnings& warnings() const;
+
+    struct Impl;
+    /// Engine-internal access; hosts use the free functions instead.
+    [[nodiscard]] Impl& impl() { return *m_impl; }
+    [[nodiscard]] const Impl& impl() const { return *m_impl; }
+
+  private:
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace supermodal

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// Rigid-body integration: semi-implicit (symplectic) Euler for translation, and for rotation a
+// torque kick followed by the torque-free flow solved by the implicit midpoint rule (see rotation.h).
+#pragma once
+
+#include "supermodal/math.h"
+#include "supermodal/world.h"
+#include "world/components.h"
+
+namespace supermodal
+{
+
+/// What every stage of one substep needs to know.
+struct StepContext {
+    double h = 0.0; ///< Substep length [s].
+    Vec3 gravity{}; ///< [m/s²], world.
+    int substep_count = 1;
+};
+
+[[nodiscard]] StepContext make_step_context(const WorldDef& def);
+
+/// Gravity and host forces into linear velocity; host torques into angular momentum (dynamic bodies).
+void integrate_forces(const StepContext& ctx, Registry& reg);
+/// Velocities into poses; the gyroscopic term is solved implicitly. Kinematic bodies follow their
+/// velocities; static bodies never move.
+void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
+/// Freezes bodies whose state is no longer finite (zero velocity, last finite pose, kinematic), so a
+/// fault never spreads; counts each in io_warnings.
+void freeze_non_finite(Registry& reg, StepWarnings& io_warnings);
+/// Clears host forces once a step has used them.
+void clear_forces(Registry& reg);
+
+} // namespace supermodal

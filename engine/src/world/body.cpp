@@ -1,0 +1,279 @@
+// SPDX-License-Identifier: MIT
+#include "supermodal/body.h"
+
+#include "core/assert.h"
+#include "supermodal/world.h"
+#include "world/world_impl.h"
+
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+const std::string k_no_name;
+const ShapeDef k_no_shape{};
+const MassProperties k_no_mass{};
+
+// Looks up a live body; asserts (and returns null) on a stale or foreign handle.
+const World::Impl* live(const World& world, Entity e)
+{
+    const World::Impl& w = world.impl();
+    const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
+    SM_ASSERT(ok, "stale or null body handle");
+    return ok ? &w : nullptr;
+}
+World::Impl* live_mut(World& world, Entity e)
+{
+    World::Impl& w = world.impl();
+    const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
+    SM_ASSERT(ok, "stale or null body handle");
+    SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
+    return ok && !w.locked ? &w : nullptr;
+}
+
+bool finite_def(const BodyDef& d)
+{
+    return is_finite(d.position) && is_finite(d.orientation) && is_finite(d.linear_velocity) &&
+           is_finite(d.angular_velocity) && std::isfinite(d.gravity_scale);
+}
+
+} // namespace
+
+BodyDef default_body_def()
+{
+    return BodyDef{};
+}
+
+Status validate(const BodyDef& def)
+{
+    if (Status s = validate(def.shape); !s)
+        return s;
+    if (def.shape.type == ShapeType::Plane && def.motion != MotionType::Static)
+        return Error{"", "motion", "a plane must be static"};
+    if (def.motion == MotionType::Dynamic && (!(def.density > 0.0) || !std::isfinite(def.density)))
+        return Error{"", "density", "expected a finite density > 0 kg/m^3"};
+    if (!finite_def(def))
+        return Error{"", "pose", "expected finite position, orientation, velocities and gravity scale"};
+    if (norm(def.orientation) == 0.0)
+        return Error{"", "orientation", "orientation quaternion has zero length"};
+    return {};
+}
+
+Entity create_body(World& world, const BodyDef& def)
+{
+    World::Impl& w = world.impl();
+    const Status status = validate(def);
+    SM_ASSERT(status.ok(), "invalid BodyDef (call validate() for the reason)");
+    SM_ASSERT(!w.locked, "bodies cannot be created while the world steps");
+    if (!status || w.locked)
+        return Entity{};
+    const Entity e = w.reg.create();
+    BodyModel model{
+        .name = def.name, .motion = def.motion, .shape = def.shape, .gravity_scale = def.gravity_scale};
+    model.mass = compute_mass_properties(def.shape, def.density);
+    if (def.motion == MotionType::Dynamic) {
+        model.inv_mass = 1.0 / model.mass.mass;
+        model.inertia_body = model.mass.inertia_diagonal;
+        const Vec3& i = model.inertia_body;
+        model.inv_inertia_body = {1.0 / i.x, 1.0 / i.y, 1.0 / i.z};
+    }
+    const Quat q = normalized(def.orientation);
+    w.reg.emplace(e, std::move(model));
+    w.reg.emplace(e, Pose{def.position, q, def.position, q});
+    w.reg.emplace(e, Velocity{def.motion == MotionType::Static ? Vec3{} : def.linear_velocity,
+                              def.motion == MotionType::Static ? Vec3{} : def.angular_velocity});
+    w.reg.emplace(e, ForceAccumulator{});
+    return e;
+}
+
+void destroy_body(World& world, Entity body)
+{
+    if (World::Impl* w = live_mut(world, body))
+        w->reg.destroy(body);
+}
+
+bool world_valid(const World& world, Entity body)
+{
+    return world.impl().reg.valid(body) && world.impl().reg.has<BodyModel>(body);
+}
+
+std::vector<Entity> world_bodies(const World& world)
+{
+    std::vector<Entity> out;
+    const Registry& reg = world.impl().reg;
+    reg.pool().for_each_alive([&](Entity e) {
+        if (reg.has<BodyModel>(e))
+            out.push_back(e);
+    });
+    return out;
+}
+
+Entity find_body(const World& world, std::string_view name)
+{
+    for (Entity e : world_bodies(world))
+        if (world.impl().reg.get<BodyModel>(e).name == name)
+            return e;
+    return Entity{};
+}
+
+const std::string& body_name(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<BodyModel>(e).name : k_no_name;
+}
+MotionType body_motion(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<BodyModel>(e).motion : MotionType::Static;
+}
+const ShapeDef& body_shape(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<BodyModel>(e).shape : k_no_shape;
+}
+const MassProperties& body_mass_properties(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<BodyModel>(e).mass : k_no_mass;
+}
+Vec3 body_position(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<Pose>(e).position : Vec3{};
+}
+Quat body_orientation(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<Pose>(e).orientation : Quat{};
+}
+Vec3 body_linear_velocity(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<Velocity>(e).linear : Vec3{};
+}
+Vec3 body_angular_velocity(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w ? w->reg.get<Velocity>(e).angular : Vec3{};
+}
+Vec3 body_angular_momentum(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    if (!w)
+        return {};
+    const Quat q = w->reg.get<Pose>(e).orientation;
+    const Vec3 w_body = inv_rotate(q, w->reg.get<Velocity>(e).angular);
+    return rotate(q, hadamard(w->reg.get<BodyModel>(e).inertia_body, w_body));
+}
+double body_kinetic_energy(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    if (!w || w->reg.get<BodyModel>(e).motion != MotionType::Dynamic)
+        return 0.0;
+    const BodyModel& m = w->reg.get<BodyModel>(e);
+    const Velocity& v = w->reg.get<Velocity>(e);
+    const Vec3 w_body = inv_rotate(w->reg.get<Pose>(e).orientation, v.angular);
+    return 0.5 * m.mass.mass * dot(v.linear, v.linear) + 0.5 * dot(w_body, hadamard(m.inertia_body, w_body));
+}
+double body_potential_energy(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    if (!w || w->reg.get<BodyModel>(e).motion != MotionType::Dynamic)
+        return 0.0;
+    const BodyModel& m = w->reg.get<BodyModel>(e);
+    return -m.mass.mass * m.gravity_scale * dot(w->def.gravity, w->reg.get<Pose>(e).position);
+}
+Vec3 body_interpolated_position(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    if (!w)
+        return {};
+    const Pose& p = w->reg.get<Pose>(e);
+    const double a = world.interpolation_alpha();
+    return (1.0 - a) * p.prev_position + a * p.position;
+}
+Quat body_interpolated_orientation(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    if (!w)
+        return {};
+    const Pose& p = w->reg.get<Pose>(e);
+    const double a = world.interpolation_alpha();
+    // Normalised lerp along the shorter arc: close enough to slerp for one step's rotation.
+    const Quat& q0 = p.prev_orientation;
+    const Quat& q1 = p.orientation;
+    const double sign = (q0.w * q1.w + q0.x * q1.x + q0.y * q1.y + q0.z * q1.z) < 0.0 ? -1.0 : 1.0;
+    return normalized(Quat{(1 - a) * q0.w + a * sign * q1.w, (1 - a) * q0.x + a * sign * q1.x,
+                           (1 - a) * q0.y + a * sign * q1.y, (1 - a) * q0.z + a * sign * q1.z});
+}
+
+void set_body_position(World& world, Entity e, const Vec3& position)
+{
+    SM_ASSERT(is_finite(position), "position must be finite");
+    if (World::Impl* w = live_mut(world, e); w && is_finite(position)) {
+        Pose& p = w->reg.get<Pose>(e);
+        p.position = p.prev_position = position; // a teleport: nothing to interpolate across
+    }
+}
+void set_body_orientation(World& world, Entity e, const Quat& orientation)
+{
+    SM_ASSERT(is_finite(orientation) && norm(orientation) > 0.0, "orientation must be finite and non-zero");
+    if (World::Impl* w = live_mut(world, e); w && is_finite(orientation) && norm(orientation) > 0.0) {
+        Pose& p = w->reg.get<Pose>(e);
+        p.orientation = p.prev_orientation = normalized(orientation);
+    }
+}
+void set_body_linear_velocity(World& world, Entity e, const Vec3& velocity)
+{
+    SM_ASSERT(is_finite(velocity), "velocity must be finite");
+    if (World::Impl* w = live_mut(world, e);
+        w && is_finite(velocity) && w->reg.get<BodyModel>(e).motion != MotionType::Static)
+        w->reg.get<Velocity>(e).linear = velocity;
+}
+void set_body_angular_velocity(World& world, Entity e, const Vec3& angular_velocity)
+{
+    SM_ASSERT(is_finite(angular_velocity), "angular velocity must be finite");
+    if (World::Impl* w = live_mut(world, e);
+        w && is_finite(angular_velocity) && w->reg.get<BodyModel>(e).motion != MotionType::Static)
+        w->reg.get<Velocity>(e).angular = angular_velocity;
+}
+
+void apply_force(World& world, Entity e, const Vec3& force, const Vec3& point)
+{
+    if (World::Impl* w = live_mut(world, e)) {
+        ForceAccumulator& acc = w->reg.get<ForceAccumulator>(e);
+        acc.force += force;
+        acc.torque += cross(point - w->reg.get<Pose>(e).position, force);
+    }
+}
+void apply_force_at_center(World& world, Entity e, const Vec3& force)
+{
+    if (World::Impl* w = live_mut(world, e))
+        w->reg.get<ForceAccumulator>(e).force += force;
+}
+void apply_torque(World& world, Entity e, const Vec3& torque)
+{
+    if (World::Impl* w = live_mut(world, e))
+        w->reg.get<ForceAccumulator>(e).torque += torque;
+}
+void apply_linear_impulse(World& world, Entity e, const Vec3& impulse, const Vec3& point)
+{
+    World::Impl* w = live_mut(world, e);
+    if (!w || w->reg.get<BodyModel>(e).motion != MotionType::Dynamic)
+        return;
+    w->reg.get<Velocity>(e).linear += w->reg.get<BodyModel>(e).inv_mass * impulse;
+    apply_angular_impulse(world, e, cross(point - w->reg.get<Pose>(e).position, impulse));
+}
+void apply_angular_impulse(World& world, Entity e, const Vec3& impulse)
+{
+    World::Impl* w = live_mut(world, e);
+    if (!w || w->reg.get<BodyModel>(e).motion != MotionType::Dynamic)
+        return;
+    const BodyModel& m = w->reg.get<BodyModel>(e);
+    const Quat q = w->reg.get<Pose>(e).orientation;
+    w->reg.get<Velocity>(e).angular += rotate(q, hadamard(m.inv_inertia_body, inv_rotate(q, impulse)));
+}
+
+} // namespace supermodal

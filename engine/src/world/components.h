@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// The components a body is made of, split into model (what it is, fixed while stepping) and state
+// (what step() changes: hashed, snapshotted).
+#pragma once
+
+#include "supermodal/body.h"
+#include "supermodal/math.h"
+#include "supermodal/shape.h"
+#include "world/registry.h"
+
+#include <string>
+
+namespace supermodal
+{
+
+/// Model: what the body is. Changed only between steps (and by the non-finite guard).
+struct BodyModel {
+    std::string name;
+    MotionType motion = MotionType::Dynamic;
+    ShapeDef shape{};
+    MassProperties mass{};
+    double inv_mass = 0.0;      ///< [1/kg]; 0 for static and kinematic bodies.
+    Vec3 inertia_body{};        ///< Principal moments [kg·m²], body frame.
+    Vec3 inv_inertia_body{};    ///< [1/(kg·m²)], body frame; 0 for non-dynamic bodies.
+    double gravity_scale = 1.0; ///< [-].
+};
+
+/// State: pose of the body frame, plus the pose before the last step (for render interpolation).
+struct Pose {
+    Vec3 position{};         ///< [m], world.
+    Quat orientation{};      ///< world_from_body.
+    Vec3 prev_position{};    ///< [m], world, before the last step.
+    Quat prev_orientation{}; ///< world_from_body, before the last step.
+};
+
+/// State: velocities of the centre of mass.
+struct Velocity {
+    Vec3 linear{};  ///< [m/s], world.
+    Vec3 angular{}; ///< [rad/s], world.
+};
+
+/// State: forces applied by the host for the next step; cleared after each step.
+struct ForceAccumulator {
+    Vec3 force{};  ///< [N], world, through the centre of mass.
+    Vec3 torque{}; ///< [N·m], world, about the centre of mass.
+};
+
+using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator>;
+
+} // namespace supermodal

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+// Hash, snapshot and restore cover exactly the dynamic state (STYLE.md 2.4), walked in entity-index
+// order so the result does not depend on component-store history.
+#include "supermodal/world.h"
+#include "world/world_impl.h"
+
+#include <cstring>
+
+namespace supermodal
+{
+namespace
+{
+
+// FNV-1a, 64 bit (Fowler–Noll–Vo): offset basis and prime from the reference definition.
+constexpr uint64_t k_fnv_offset = 14695981039346656037ull;
+constexpr uint64_t k_fnv_prime = 1099511628211ull;
+
+struct Fnv {
+    uint64_t h = k_fnv_offset;
+    void bytes(const void* data, size_t n)
+    {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i) {
+            h ^= p[i];
+            h *= k_fnv_prime;
+        }
+    }
+    void f64(double v) { bytes(&v, sizeof v); }
+    void u64(uint64_t v) { bytes(&v, sizeof v); }
+};
+
+// The packed layout of one body in a Snapshot; k_values_per_body doubles.
+void pack(const World::Impl& w, Entity e, std::vector<double>& out)
+{
+    const Pose& p = w.reg.get<Pose>(e);
+    const Velocity& v = w.reg.get<Velocity>(e);
+    const ForceAccumulator& f = w.reg.get<ForceAccumulator>(e);
+    const double values[k_values_per_body] = {p.position.x,
+                                              p.position.y,
+                                              p.position.z,
+                                              p.orientation.w,
+                                              p.orientation.x,
+                                              p.orientation.y,
+                                              p.orientation.z,
+                                              p.prev_position.x,
+                                              p.prev_position.y,
+                                              p.prev_position.z,
+                                              p.prev_orientation.w,
+                                              p.prev_orientation.x,
+                                              p.prev_orientation.y,
+                                              p.prev_orientation.z,
+                                              v.linear.x,
+                                              v.linear.y,
+                                              v.linear.z,
+                                              v.angular.x,
+                                              v.angular.y,
+                                              v.angular.z,
+                                              f.force.x,
+                                              f.force.y,
+                                              f.force.z,
+                                              f.torque.x,
+                                              f.torque.y,
+                                              f.torque.z};
+    out.insert(out.end(), values, values + k_values_per_body);
+}
+
+void unpack(World::Impl& w, Entity e, const double* in)
+{
+    Pose& p = w.reg.get<Pose>(e);
+    Velocity& v = w.reg.get<Velocity>(e);
+    ForceAccumulator& f = w.reg.get<ForceAccumulator>(e);
+    p.position = {in[0], in[1], in[2]};
+    p.orientation = {in[3], in[4], in[5], in[6]};
+    p.prev_position = {in[7], in[8], in[9]};
+    p.prev_orientation = {in[10], in[11], in[12], in[13]};
+    v.linear = {in[14], in[15], in[16]};
+    v.angular = {in[17], in[18], in[19]};
+    f.force = {in[20], in[21], in[22]};
+    f.torque = {in[23], in[24], in[25]};
+}
+
+} // namespace
+
+uint64_t World::state_hash() const
+{
+    const Impl& w = *m_impl;
+    Fnv fnv;
+    fnv.f64(w.time);
+    fnv.u64(w.step_count);
+    std::vector<double> values;
+    values.reserve(k_values_per_body);
+    w.reg.pool().for_each_alive([&](Entity e) {
+        if (!w.reg.has<Pose>(e))
+            return;
+        fnv.u64((uint64_t{e.index} << 32) | e.generation);
+        values.clear();
+        pack(w, e, values);
+        // Previous pose and pending forces are left out: the hash is of where bodies are and how they move.
+        for (size_t i : {0, 1, 2, 3, 4, 5, 6, 14, 15, 16, 17, 18, 19})
+            fnv.f64(values[i]);
+    });
+    return fnv.h;
+}
+
+Snapshot World::snapshot() const
+{
+    const Impl& w = *m_impl;
+    Snapshot s;
+    s.time = w.time;
+    s.step_count = w.step_count;
+    s.accumulator = w.accumulator;
+    w.reg.pool().for_each_alive([&](Entity e) {
+        if (!w.reg.has<Pose>(e))
+            return;
+        s.entities.push_back(e);
+        pack(w, e, s.values);
+    });
+    return s;
+}
+
+Status World::restore(const Snapshot& s)
+{
+    Impl& w = *m_impl;
+    if (s.values.size() != s.entities.size() * k_values_per_body)
+        return Error{"", "snapshot", "corrupt snapshot: value count does not match its bodies"};
+    std::vector<Entity> live;
+    w.reg.pool().for_each_alive([&](Entity e) {
+        if (w.reg.has<Pose>(e))
+            live.push_back(e);
+    });
+    if (live != s.entities)
+        return Error{"", "snapshot", "bodies were created or destroyed since this snapshot was taken"};
+    for (size_t i = 0; i < live.size(); ++i)
+        unpack(w, live[i], s.values.data() + i * k_values_per_body);
+    w.time = s.time;
+    w.step_count = s.step_count;
+    w.accumulator = s.accumulator;
+    return {};
+}
+
+} // namespace supermodal

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+#include "supermodal/world.h"
+
+#include "core/assert.h"
+#include "dynamics/integrate.h"
+#include "world/world_impl.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+constexpr int k_max_substeps = 1000;
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+} // namespace
+
+WorldDef default_world_def()
+{
+    return WorldDef{};
+}
+
+Status validate(const WorldDef& def)
+{
+    if (!(def.dt > 0.0) || !std::isfinite(def.dt))
+        return Error{"", "dt", "expected a finite step > 0 s"};
+    if (def.substep_count < 1 || def.substep_count > k_max_substeps)
+        return Error{"", "substep_count", "expected an integer in [1, 1000]"};
+    if (!is_finite(def.gravity))
+        return Error{"", "gravity", "expected a finite vector"};
+    if (def.max_steps_per_advance < 1)
+        return Error{"", "max_steps_per_advance", "expected an integer >= 1"};
+    return {};
+}
+
+std::string_view stage_name(Stage stage)
+{
+    switch (stage) {
+    case Stage::IntegrateForces:
+        return "integrate_forces";
+    case Stage::Broadphase:
+        return "broadphase";
+    case Stage::Narrowphase:
+        return "narrowphase";
+    case Stage::PenaltyForces:
+        return "penalty_forces";
+    case Stage::ModalUpdate:
+        return "modal_update";
+    case Stage::IntegratePositions:
+        return "integrate_positions";
+    case Stage::UpdateSurfaces:
+        return "update_surfaces";
+    case Stage::Events:
+        return "events";
+    case Stage::Count:
+        break;
+    }
+    return "unknown";
+}
+
+World::World(const WorldDef& def) : m_impl(std::make_unique<Impl>())
+{
+    SM_ASSERT(validate(def).ok(), "invalid WorldDef");
+    m_impl->def = validate(def).ok() ? def : default_world_def();
+}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+// The step, stage by stage. Stages that later issues fill (contact, constraints, modes) are listed
+// now so the order is fixed in one place.
+void World::Impl::step()
+{
+    SM_ASSERT(!locked, "step() re-entered from a callback");
+    locked = true;
+    const auto step_start = Clock::now();
+    profile = StepProfile{};
+    auto run = [this](Stage stage, auto&& fn) {
+        const auto start = Clock::now();
+        fn();
+        profile.stage_ms[static_cast<size_t>(stage)] += ms_since(start);
+    };
+    const StepContext ctx = make_step_context(def);
+    for (int i = 0; i < ctx.substep_count; ++i) {
+        run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
+        run(Stage::Broadphase, [] {});
+        run(Stage::Narrowphase, [] {});
+        run(Stage::PenaltyForces, [] {});
+        run(Stage::ModalUpdate, [] {});
+        run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
+        run(Stage::UpdateSurfaces, [] {});
+        time += ctx.h;
+    }
+    run(Stage::Events, [&] {
+        freeze_non_finite(reg, warnings);
+        clear_forces(reg);
+    });
+    // Whole-step time from the step count, so rounding does not accumulate over long runs.
+    ++step_count;
+    time = static_cast<double>(step_count) * def.dt;
+    profile.total_ms = ms_since(step_start);
+    locked = false;
+}
+
+void World::step()
+{
+    m_impl->step();
+}
+
+int World::advance(double real_seconds)
+{
+    SM_ASSERT(std::isfinite(real_seconds) && real_seconds >= 0.0, "advance() needs a finite time >= 0");
+    if (!(std::isfinite(real_seconds) && real_seconds >= 0.0))
+        return 0;
+    Impl& w = *m_impl;
+    w.accumulator += real_seconds;
+    int steps = 0;
+    while (w.accumulator >= w.def.dt && steps < w.def.max_steps_per_advance) {
+        w.step();
+        w.accumulator -= w.def.dt;
+        ++steps;
+    }
+    // A backlog beyond the cap is dropped: the simulation runs slower than real time instead of
+    // spiralling into ever longer frames.
+    if (w.accumulator >= w.def.dt)
+        w.accumulator = std::fmod(w.accumulator, w.def.dt);
+    return steps;
+}
+
+double World::interpolation_alpha() const
+{
+    return m_impl->accumulator / m_impl->def.dt;
+}
+const WorldDef& World::settings() const
+{
+    return m_impl->def;
+}
+double World::time() const
+{
+    return m_impl->time;
+}
+uint64_t World::step_count() const
+{
+    return m_impl->step_count;
+}
+const StepProfile& World::profile() const
+{
+    return m_impl->profile;
+}
+const StepWarnings& World::warnings() const
+{
+    return m_impl->warnings;
+}
+
+} // namespace supermodal

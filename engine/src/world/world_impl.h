@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include "supermodal/world.h"
+#include "world/components.h"
+
+namespace supermodal
+{
+
+/// Doubles per body in a Snapshot: pose (3 + 4), previous pose (3 + 4), velocities (3 + 3), forces (3 + 3).
+inline constexpr size_t k_values_per_body = 26;
+
+struct World::Impl {
+    WorldDef def{};
+    Registry reg;
+    double time = 0.0; ///< [s].
+    uint64_t step_count = 0;
+    double accumulator = 0.0; ///< Real time not yet stepped [s].
+    StepProfile profile{};
+    StepWarnings warnings{};
+    bool locked = false; ///< True inside step(): mutations assert.
+
+    void step();
+};
+
+} // namespace supermodal

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The README's test command: install what is missing, build (warnings are errors), run every test.
+# Idempotent: a second run rebuilds nothing and only reruns ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+./scripts/deps.sh
+build=${SUPERMODAL_BUILD_DIR:-build}
+jobs=${SUPERMODAL_JOBS:-$(nproc)}
+# RelWithDebInfo: optimised, with engine assertions on (STYLE.md 2.6).
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERMODAL_WERROR=ON \
+  -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=ON >/dev/null
+cmake --build "$build" -j "$jobs"
+ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 600

@@ -1,0 +1,50 @@
+// Helpers shared by tests: small worlds built in code.
+#pragma once
+
+#include "supermodal/assert.h"
+#include "supermodal/body.h"
+#include "supermodal/world.h"
+
+namespace supermodal::test
+{
+
+/// A dynamic superquadric body with the given radii [m], density [kg/m³] and pose.
+inline BodyDef ellipsoid_def(Vec3 radii, Vec3 position = {}, double density = 1000.0)
+{
+    BodyDef def = default_body_def();
+    def.shape.radii = radii;
+    def.position = position;
+    def.density = density;
+    return def;
+}
+
+/// Runs n fixed steps.
+inline void run_steps(World& world, int n)
+{
+    for (int i = 0; i < n; ++i)
+        world.step();
+}
+
+/// Counts assertion failures instead of aborting, while in scope.
+class AssertCounter
+{
+  public:
+    AssertCounter()
+    {
+        m_previous = set_assert_handler(&count);
+        s_count = 0;
+    }
+    ~AssertCounter() { set_assert_handler(m_previous); }
+    [[nodiscard]] int count() const { return s_count; }
+
+  private:
+    static bool count(const char*, const char*, const char*, int)
+    {
+        ++s_count;
+        return false;
+    }
+    static inline int s_count = 0;
+    AssertHandler m_previous = nullptr;
+};
+
+} // namespace supermodal::test

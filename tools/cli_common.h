@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// Shared pieces of the `supermodal` command line: exit codes, atomic file output, JSON of engine types.
+#pragma once
+
+#include "supermodal/body.h"
+#include "supermodal/scene.h"
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace supermodal::cli
+{
+
+inline constexpr int k_exit_ok = 0;
+inline constexpr int k_exit_internal = 1;
+inline constexpr int k_exit_bad_input = 2;
+
+/// Prints "supermodal: <message>" to stderr.
+void print_error(const std::string& message);
+
+/// Writes text to path through a temporary file and a rename, so a reader never sees half a file and
+/// a failure leaves nothing behind. Returns an error message, or empty on success.
+[[nodiscard]] std::string write_file_atomically(const std::string& path, const std::string& text);
+/// Checks up front that path's directory exists and is writable (so bad paths fail before any work).
+[[nodiscard]] std::string check_writable(const std::string& path);
+
+[[nodiscard]] nlohmann::json to_json(const Vec3& v);
+[[nodiscard]] nlohmann::json to_json(const Quat& q);
+[[nodiscard]] const char* motion_name(MotionType motion);
+
+struct RunOptions {
+    std::string scene;
+    double seconds = -1.0; ///< < 0: not given.
+    long long steps = -1;  ///< < 0: not given.
+    std::string json_out;
+    std::string csv_out;
+    int csv_every = 1;
+    bool quiet = false;
+};
+int run_command(const RunOptions& options);
+
+struct InspectOptions {
+    std::string scene;
+    bool json = false;
+};
+int inspect_command(const InspectOptions& options);
+
+} // namespace supermodal::cli

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+// `supermodal run`: load a scene, step it, write a JSON summary (and optionally a CSV trace).
+#include "cli_common.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <unistd.h>
+#include <vector>
+
+namespace supermodal::cli
+{
+namespace
+{
+
+// A run longer than this many steps is surely a typo (10^9 steps of 1 ms is 11 days of simulated time).
+constexpr long long k_max_steps = 1'000'000'000;
+
+struct Energies {
+    double kinetic = 0.0, potential = 0.0;
+};
+Energies total_energy(const World& world)
+{
+    Energies e;
+    for (Entity b : world_bodies(world)) {
+        e.kinetic += body_kinetic_energy(world, b);
+        e.potential += body_potential_energy(world, b);
+    }
+    return e;
+}
+
+void trace_rows(const World& world, std::ostringstream& csv)
+{
+    char buf[512];
+    for (Entity b : world_bodies(world)) {
+        const Vec3 p = body_position(world, b), v = body_linear_velocity(world, b);
+        const Vec3 w = body_angular_velocity(world, b);
+        const Quat q = body_orientation(world, b);
+        std::snprintf(
+            buf, sizeof buf,
+            "%llu,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+            static_cast<unsigned long long>(world.step_count()), world.time(), body_name(world, b).c_str(),
+            p.x, p.y, p.z, q.w, q.x, q.y, q.z, v.x, v.y, v.z, w.x, w.y, w.z);
+        csv << buf;
+    }
+}
+
+class Progress
+{
+  public:
+    Progress(long long total, bool enabled) : m_total(total), m_enabled(enabled && ::isatty(2)) {}
+    void update(long long done)
+    {
+        if (!m_enabled)
+            return;
+        const int percent = static_cast<int>(100 * done / std::max(1LL, m_total));
+        if (percent == m_last)
+            return;
+        m_last = percent;
+        std::fprintf(stderr, "\r[%-40s] %3d%%",
+                     std::string(static_cast<size_t>(percent * 40 / 100), '#').c_str(), percent);
+        if (done == m_total)
+            std::fprintf(stderr, "\n");
+    }
+
+  private:
+    long long m_total;
+    bool m_enabled;
+    int m_last = -1;
+};
+
+nlohmann::json body_summary(const World& world, Entity b)
+{
+    return {{"name", body_name(world, b)},
+            {"motion", motion_name(body_motion(world, b))},
+            {"position", to_json(body_position(world, b))},
+            {"orientation", to_json(body_orientation(world, b))},
+            {"velocity", to_json(body_linear_velocity(world, b))},
+            {"angular_velocity", to_json(body_angular_velocity(world, b))},
+            {"kinetic_energy", body_kinetic_energy(world, b)},
+            {"potential_energy", body_potential_energy(world, b)}};
+}
+
+std::string hex(uint64_t v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
+
+} // namespace
+
+int run_command(const RunOptions& opt)
+{
+    if (opt.seconds >= 0.0 && opt.steps >= 0) {
+        print_error("give --seconds or --steps, not both");
+        return k_exit_bad_input;
+    }
+    for (const std::string& out : {opt.json_out, opt.csv_out})
+        if (!out.empty())
+            if (std::string err = check_writable(out); !err.empty()) {
+                print_error(err);
+                return k_exit_bad_input;
+            }
+    Result<Scene> scene = load_scene(opt.scene);
+    if (!scene) {
+        print_error(scene.error().message());
+        return k_exit_bad_input;
+    }
+    Result<World> built = build_world(*scene);
+    if (!built) {
+        print_error(built.error().message());
+        return k_exit_bad_input;
+    }
+    World& world = *built;
+    const double dt = world.settings().dt;
+    const double seconds = opt.seconds >= 0.0 ? opt.seconds : scene->duration;
+    if (opt.seconds >= 0.0 && !(std::isfinite(opt.seconds) && opt.seconds > 0.0)) {
+        print_error("--seconds: expected a finite time > 0");
+        return k_exit_bad_input;
+    }
+    const double wanted = opt.steps >= 0 ? static_cast<double>(opt.steps) : std::ceil(seconds / dt - 1e-9);
+    if (!(wanted >= 1.0 && wanted <= static_cast<double>(k_max_steps))) {
+        print_error("run length: expected 1 to 1e9 steps, got " + std::to_string(wanted) +
+                    " (dt = " + std::to_string(dt) + " s)");
+        return k_exit_bad_input;
+    }
+    const long long steps = static_cast<long long>(wanted);
+
+    std::ostringstream csv;
+    if (!opt.csv_out.empty()) {
+        csv << "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+        trace_rows(world, csv);
+    }
+    const Energies e0 = total_energy(world);
+    std::vector<double> step_ms;
+    step_ms.reserve(static_cast<size_t>(std::min(steps, 10'000'000LL)));
+    std::array<double, static_cast<size_t>(Stage::Count)> stage_total{};
+    Progress progress(steps, !opt.quiet);
+    for (long long i = 1; i <= steps; ++i) {
+        world.step();
+        step_ms.push_back(world.profile().total_ms);
+        for (size_t s = 0; s < stage_total.size(); ++s)
+            stage_total[s] += world.profile().stage_ms[s];
+        if (!opt.csv_out.empty() && (i % opt.csv_every == 0 || i == steps))
+            trace_rows(world, csv);
+        if (i % 64 == 0 || i == steps)
+            progress.update(i);
+    }
+
+    const Energies e1 = total_energy(world);
+    std::vector<double> sorted = step_ms;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    double sum = 0.0;
+    for (double ms : step_ms)
+        sum += ms;
+    nlohmann::json stages = nlohmann::json::object();
+    for (size_t s = 0; s < stage_total.size(); ++s)
+        stages[std::string(stage_name(static_cast<Stage>(s)))] = stage_total[s] / static_cast<double>(steps);
+    nlohmann::json bodies = nlohmann::json::array();
+    for (Entity b : world_bodies(world))
+        bodies.push_back(body_summary(world, b));
+    const nlohmann::json summary = {
+        {"scene", opt.scene},
+        {"steps", steps},
+        {"time", world.time()},
+        {"dt", dt},
+        {"substeps", world.settings().substep_count},
+        {"body_count", bodies.size()},
+        {"state_hash", hex(world.state_hash())},
+        {"ms_per_step",
+         {{"mean", sum / static_cast<double>(steps)},
+          {"median", sorted[sorted.size() / 2]},
+          {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
+        {"stage_ms_mean", stages},
+        {"energy",
+         {{"initial_kinetic", e0.kinetic},
+          {"initial_potential", e0.potential},
+          {"kinetic", e1.kinetic},
+          {"potential", e1.potential},
+          {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
+        {"warnings",
+         {{"non_finite_bodies", world.warnings().non_finite_bodies},
+          {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks}}},
+        {"bodies", bodies}};
+
+    const std::string text = summary.dump(2) + "\n";
+    if (!opt.csv_out.empty())
+        if (std::string err = write_file_atomically(opt.csv_out, csv.str()); !err.empty()) {
+            print_error(err);
+            return k_exit_internal;
+        }
+    if (opt.json_out.empty()) {
+        std::fputs(text.c_str(), stdout);
+    } else if (std::string err = write_file_atomically(opt.json_out, text); !err.empty()) {
+        print_error(err);
+        return k_exit_internal;
+    }
+    return k_exit_ok;
+}
+
+} // namespace supermodal::cli
