@@ -30,8 +30,10 @@ void print_error(const std::string& message);
 
 struct RunOptions {
     std::string scene;
-    double seconds = -1.0; ///< < 0: not given.
-    long long steps = -1;  ///< < 0: not given.
+    double seconds = 0.0; ///< Used when has_seconds.
+    long long steps = 0;  ///< Used when has_steps.
+    bool has_seconds = false;
+    bool has_steps = false;
     std::string json_out;
     std::string csv_out;
     int csv_every = 1;

@@ -94,8 +94,16 @@ std::string hex(uint64_t v)
 
 int run_command(const RunOptions& opt)
 {
-    if (opt.seconds >= 0.0 && opt.steps >= 0) {
+    if (opt.has_seconds && opt.has_steps) {
         print_error("give --seconds or --steps, not both");
+        return k_exit_bad_input;
+    }
+    if (opt.has_seconds && !(std::isfinite(opt.seconds) && opt.seconds > 0.0)) {
+        print_error("--seconds: expected a finite time > 0 s, found " + std::to_string(opt.seconds));
+        return k_exit_bad_input;
+    }
+    if (opt.has_steps && opt.steps < 1) {
+        print_error("--steps: expected an integer >= 1, found " + std::to_string(opt.steps));
         return k_exit_bad_input;
     }
     for (const std::string& out : {opt.json_out, opt.csv_out})
@@ -116,12 +124,8 @@ int run_command(const RunOptions& opt)
     }
     World& world = *built;
     const double dt = world.settings().dt;
-    const double seconds = opt.seconds >= 0.0 ? opt.seconds : scene->duration;
-    if (opt.seconds >= 0.0 && !(std::isfinite(opt.seconds) && opt.seconds > 0.0)) {
-        print_error("--seconds: expected a finite time > 0");
-        return k_exit_bad_input;
-    }
-    const double wanted = opt.steps >= 0 ? static_cast<double>(opt.steps) : std::ceil(seconds / dt - 1e-9);
+    const double seconds = opt.has_seconds ? opt.seconds : scene->duration;
+    const double wanted = opt.has_steps ? static_cast<double>(opt.steps) : std::ceil(seconds / dt - 1e-9);
     if (!(wanted >= 1.0 && wanted <= static_cast<double>(k_max_steps))) {
         print_error("run length: expected 1 to 1e9 steps, got " + std::to_string(wanted) +
                     " (dt = " + std::to_string(dt) + " s)");

@@ -20,8 +20,9 @@ int main(int argc, char** argv)
     auto* seconds = run_cmd->add_option("--seconds", run.seconds,
                                         "Simulated time to run [s] (default: the "
                                         "scene's settings.duration)");
-    run_cmd->add_option("--steps", run.steps, "Number of fixed steps to run instead of --seconds")
-        ->excludes(seconds);
+    auto* steps =
+        run_cmd->add_option("--steps", run.steps, "Number of fixed steps to run instead of --seconds")
+            ->excludes(seconds);
     run_cmd->add_option("--json", run.json_out, "Write the summary here instead of stdout");
     run_cmd->add_option(
         "--csv", run.csv_out,
@@ -45,6 +46,8 @@ int main(int argc, char** argv)
         app.exit(e);
         return cli::k_exit_bad_input;
     }
+    run.has_seconds = seconds->count() > 0;
+    run.has_steps = steps->count() > 0;
     try {
         if (run_cmd->parsed())
             return cli::run_command(run);

@@ -139,6 +139,9 @@ TEST(Cli, UsageErrorsExitTwo)
     EXPECT_EQ(run_cli("run /nonexistent/scene.json").status, 2);
     EXPECT_EQ(run_cli("run " + scene("projectile.json") + " --json /nonexistent/dir/out.json").status, 2);
     EXPECT_EQ(run_cli("run " + scene("projectile.json") + " --seconds -1").status, 2);
+    EXPECT_EQ(run_cli("run " + scene("projectile.json") + " --seconds 0").status, 2);
+    EXPECT_EQ(run_cli("run " + scene("projectile.json") + " --steps 0").status, 2);
+    EXPECT_EQ(run_cli("run " + scene("projectile.json") + " --steps 1e12").status, 2);
 }
 
 TEST(Cli, HelpDocumentsTheCommands)

@@ -68,10 +68,11 @@ bool midpoint_newton(const Vec3& p0, const Vec3& inv_inertia, double h, Vec3& io
     return length(io_p1 - p0 - h * cross(pm, hadamard(inv_inertia, pm))) <= 1e3 * k_newton_rel_tol * scale;
 }
 
-// Catto's gyroscopic step: one Newton step of backward Euler on I(ω'−ω) + h ω'×Iω' = 0.
-Vec3 backward_euler_one_step(const Vec3& p0, const Vec3& inertia, const Vec3& inv_inertia, double h)
+} // namespace
+
+Vec3 backward_euler_one_step(const Vec3& p0, const Vec3& inertia, double h)
 {
-    const Vec3 w0 = hadamard(inv_inertia, p0);
+    const Vec3 w0{p0.x / inertia.x, p0.y / inertia.y, p0.z / inertia.z};
     const Vec3 f = h * cross(w0, p0);
     const Mat3 jac = add_scaled(Mat3::diagonal(inertia),
                                 add_scaled(skew(w0) * Mat3::diagonal(inertia), skew(p0), -1.0), h);
@@ -80,6 +81,9 @@ Vec3 backward_euler_one_step(const Vec3& p0, const Vec3& inertia, const Vec3& in
         return p0;
     return hadamard(inertia, w0 - dw);
 }
+
+namespace
+{
 
 // Shortest rotation taking direction a onto direction b; identity when they are (anti)parallel-degenerate.
 Quat rotation_between(const Vec3& a, const Vec3& b)
@@ -103,7 +107,7 @@ RotationStep rotate_torque_free(const Quat& q, const Vec3& momentum_body, const 
     RotationStep out;
     Vec3 p1 = momentum_body + h * cross(momentum_body, hadamard(inv_inertia, momentum_body));
     if (!midpoint_newton(momentum_body, inv_inertia, h, p1)) {
-        p1 = backward_euler_one_step(momentum_body, inertia_body, inv_inertia, h);
+        p1 = backward_euler_one_step(momentum_body, inertia_body, h);
         const double n = length(p1);
         p1 = (n > 0.0 && std::isfinite(n)) ? p1 * (size / n)
                                            : momentum_body; // keep |Π| so the spin cannot grow
