@@ -7,6 +7,7 @@
 #include "supermodal/result.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace supermodal
 {
@@ -15,6 +16,14 @@ namespace supermodal
 enum class ShapeType : uint8_t {
     Superquadric, ///< Barr superquadric; ε = 1 ellipsoid, ε → 0 box, ε = 2 octahedron, ε > 2 concave.
     Plane,        ///< Half-space {x : normal·x ≤ offset}; static bodies only.
+    Hyperquadric, ///< Σ_i |n_i·x + d_i|^γ_i ≤ 1 (Hanson 1988); any number of terms.
+};
+
+/// One term |normal·x + offset|^exponent of a hyperquadric, shape frame.
+struct HyperquadricTerm {
+    Vec3 normal{1, 0, 0};  ///< [1/m]: its length scales the term (a slab of half-width 1/|n| for one term).
+    double offset = 0.0;   ///< [-].
+    double exponent = 2.0; ///< γ [-], > 0; γ ≥ 1 keeps the term convex.
 };
 
 /// Barr taper along the polar axis (z): x, y scale by (1 + k·z/a3).

@@ -5,6 +5,7 @@
 #include "supermodal/assert.h"
 #include "supermodal/body.h"
 #include "supermodal/entity.h"
+#include "supermodal/geometry.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
