@@ -48,6 +48,7 @@ struct ShapeDef {
     Bend bend{};                ///< Stored for the geometry layer; not yet used by dynamics.
     Vec3 plane_normal{0, 1, 0}; ///< Plane outward normal, world frame, non-zero (normalised on use).
     double plane_offset = 0.0;  ///< Plane offset along the normal [m].
+    std::vector<HyperquadricTerm> terms{}; ///< Hyperquadric terms (≥ 3, normals spanning 3-D), shape frame.
 };
 
 /// The documented starting point: a unit-diameter sphere.

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs them.
+# Called by .ci/run after scripts/test.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+./scripts/deps.sh
+build=${SUPERMODAL_ASAN_BUILD_DIR:-build-asan}
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSUPERMODAL_SANITIZE=ON -DSUPERMODAL_WERROR=ON \
+  -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=OFF >/dev/null
+cmake --build "$build" -j "$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# The install test rebuilds a host program outside the sanitized flags; it is covered by test.sh.
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900 -E '^Install\.'
