@@ -7,6 +7,8 @@ packages=(
   cmake ninja-build g++ pkg-config
   nlohmann-json3-dev   # scene files
   libcli11-dev         # the supermodal command line
+  libeigen3-dev        # modal dynamics: sparse assembly, dense eigen solves
+  libspectra-dev       # modal dynamics: shift-invert eigen solves for large lattices
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
 )

@@ -1,6 +1,8 @@
 # System packages only (Debian); scripts/deps.sh installs them. No third-party source in the repo.
 find_package(nlohmann_json 3.10 CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
+find_package(Eigen3 3.4 CONFIG REQUIRED)   # modal: sparse assembly, dense eigen solves
+find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)  # modal: shift-invert eigen solves
 if(SUPERMODAL_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

@@ -241,7 +241,8 @@ TEST(SceneLoaderErrors, UnknownChoiceSuggestsTheClosest)
                          "expected \"static\", \"kinematic\" or \"dynamic\", found \"dinamic\"; did you mean "
                          "\"dynamic\"?"));
     EXPECT_TRUE(fails_at(R"({"bodies": [{"name": "b", "shape": {"type": "sphere"}}]})",
-                         "/bodies/0/shape/type", "expected \"superquadric\" or \"plane\", found \"sphere\""));
+                         "/bodies/0/shape/type",
+                         "expected \"superquadric\", \"plane\" or \"hyperquadric\", found \"sphere\""));
 }
 
 TEST(SceneLoaderErrors, UnknownMaterialListsTheMaterials)
@@ -473,4 +474,84 @@ TEST(SceneLoaderDidYouMean, SuggestsOnlyLikelyTypos)
     EXPECT_EQ(sm::scene_io::closest_match("x", keys), ""); // "x" → "dt" replaces everything
     EXPECT_EQ(sm::scene_io::closest_match("timestep", keys), "");
     EXPECT_EQ(sm::scene_io::did_you_mean("duraton", keys), "; did you mean \"duration\"?");
+}
+
+namespace
+{
+
+/// A scene with one hyperquadric body whose "terms" value is `terms` and extra keys `fields`.
+std::string one_hyperquadric(std::string_view terms, std::string_view fields = "")
+{
+    return R"({"bodies": [{"name": "hq", )" + std::string(fields) +
+           R"( "shape": {"type": "hyperquadric", "terms": )" + std::string(terms) + "}}]}";
+}
+
+// A rounded cube of side 1 (γ = 8) cut by a rounded slab across its diagonal: the paper's kind of solid.
+constexpr char k_cut_cube_terms[] = R"([{"normal": [2, 0, 0], "offset": 0, "exponent": 8},
+    {"normal": [0, 2, 0], "exponent": 8}, {"normal": [0, 0, 2], "offset": 0, "exponent": 8},
+    {"normal": [1.5, 1.5, 1.5], "offset": 0.25, "exponent": 8}])";
+
+} // namespace
+
+TEST(SceneLoader, ReadsAHyperquadric)
+{
+    const sm::Result<sm::Scene> scene = sm::parse_scene(one_hyperquadric(k_cut_cube_terms, R"("mass": 2,)"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::ShapeDef& shape = scene->bodies[0].def.shape;
+    EXPECT_EQ(shape.type, sm::ShapeType::Hyperquadric);
+    ASSERT_EQ(shape.terms.size(), 4u);
+    EXPECT_EQ(shape.terms[1].normal, (sm::Vec3{0, 2, 0}));
+    EXPECT_EQ(shape.terms[1].offset, 0.0) << "offset defaults to 0";
+    EXPECT_EQ(shape.terms[3].offset, 0.25);
+    EXPECT_EQ(shape.terms[3].exponent, 8.0);
+    // "mass" divides by the quadrature volume, which build_world's mass properties use as well.
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    EXPECT_NEAR(sm::body_mass_properties(*world, sm::find_body(*world, "hq")).mass, 2.0, 2.0 * k_round_off);
+}
+
+TEST(SceneLoader, MassOfATaperedBodyUsesTheTaperedVolume)
+{
+    const sm::Result<sm::Scene> scene = sm::parse_scene(R"({"bodies": [{"name": "cone", "mass": 3,
+        "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.3], "taper": [0.8, 0.8],
+                  "bend": {"curvature": 1.5, "angle": 0.3}}}]})");
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::BodyDef& def = scene->bodies[0].def;
+    EXPECT_EQ(def.shape.taper.kx, 0.8);
+    EXPECT_EQ(def.shape.bend.curvature, 1.5);
+    EXPECT_NEAR(def.density * sm::compute_mass_properties(def.shape, 1.0).volume, 3.0, 3.0 * k_round_off);
+    // The taper grows the volume by kx·ky/a3²·∫z² dV, so the untapered volume would be wrong here.
+    EXPECT_GT(std::abs(def.density * sm::superquadric_volume(def.shape) - 3.0), 0.1);
+}
+
+TEST(SceneLoaderErrors, HyperquadricRules)
+{
+    const std::string t = R"({"normal": [1, 0, 0], "exponent": 2})";
+    EXPECT_TRUE(fails_at(one_hyperquadric("[" + t + ", " + t + "]"), "/bodies/0/shape/terms",
+                         "expected an array of 3 to 256 terms"));
+    EXPECT_TRUE(fails_at(R"({"bodies": [{"name": "hq", "shape": {"type": "hyperquadric"}}]})",
+                         "/bodies/0/shape", "missing required key \"terms\""));
+    EXPECT_TRUE(fails_at(one_hyperquadric(R"([{"normal": [1, 0, 0], "exponent": 0}, {}, {}])"),
+                         "/bodies/0/shape/terms/0/exponent", "expected a number > 0, found 0"));
+    EXPECT_TRUE(fails_at(one_hyperquadric(R"([{"normal": [1, 0, 0], "exponant": 2}, {}, {}])"),
+                         "/bodies/0/shape/terms/0/exponant", "did you mean \"exponent\"?"));
+    EXPECT_TRUE(fails_at(one_hyperquadric("[" + t + ", " + t + R"(, {"normal": [0, 0, 0], "exponent": 2}])"),
+                         "/bodies/0/shape/terms/2/normal", "term normal has zero length"));
+    EXPECT_TRUE(fails_at(one_hyperquadric("[" + t + ", " + t + R"(, {"normal": [0, 1], "exponent": 2}])"),
+                         "/bodies/0/shape/terms/2/normal", "expected an array of 3 numbers"));
+    // Normals in one plane: the body runs off to infinity along z.
+    EXPECT_TRUE(fails_at(one_hyperquadric(R"([{"normal": [1, 0, 0], "exponent": 2},
+        {"normal": [0, 1, 0], "exponent": 2}, {"normal": [1, 1, 0], "exponent": 4}])"),
+                         "/bodies/0/shape/terms", "do not span 3-D"));
+    // Two slabs that do not meet: nothing is inside.
+    EXPECT_TRUE(fails_at(one_hyperquadric(R"([{"normal": [1, 0, 0], "exponent": 2},
+        {"normal": [0, 1, 0], "exponent": 2}, {"normal": [0, 0, 1], "exponent": 2},
+        {"normal": [1, 0, 0], "offset": -3, "exponent": 2}])"),
+                         "/bodies/0/shape/terms", "the terms leave no inside"));
+    // Keys of the other shape types say so, both ways.
+    EXPECT_TRUE(
+        fails_at(R"({"bodies": [{"name": "hq", "shape": {"type": "hyperquadric", "taper": [0, 0]}}]})",
+                 "/bodies/0/shape/taper", "\"taper\" does not apply to a hyperquadric"));
+    EXPECT_TRUE(fails_at(R"({"bodies": [{"name": "s", "shape": {"type": "superquadric", "terms": []}}]})",
+                         "/bodies/0/shape/terms", "\"terms\" does not apply to a superquadric"));
 }

@@ -31,11 +31,14 @@ struct BodyDef {
     MotionType motion = MotionType::Dynamic;
     ShapeDef shape{};                    ///< Shape in the body frame (origin at the centre of mass).
     double density = 1000.0;             ///< [kg/m³], > 0; ignored for static and kinematic bodies.
-    Vec3 position{};                     ///< Body origin [m], world frame.
+    Vec3 position{};                     ///< Shape origin [m], world frame; the centre of mass unless a
+                                         ///< taper or bend moves it (MassProperties::center_of_mass).
     Quat orientation = Quat::identity(); ///< world_from_body rotation, unit [w, x, y, z].
     Vec3 linear_velocity{};              ///< Of the centre of mass [m/s], world frame.
     Vec3 angular_velocity{};             ///< [rad/s], world frame.
     double gravity_scale = 1.0;          ///< Multiplies the world's gravity [-].
+    double friction = 0.5;               ///< Coulomb coefficient [-], ≥ 0; a pair uses √(μa·μb).
+    double restitution = 0.2;            ///< [-], in [0, 1]; a pair uses the larger of the two.
 };
 
 /// The documented starting point: a dynamic water-density sphere of radius 0.5 m at the origin.
@@ -60,7 +63,10 @@ void destroy_body(World& world, Entity body);
 [[nodiscard]] MotionType body_motion(const World& world, Entity body);
 [[nodiscard]] const ShapeDef& body_shape(const World& world, Entity body);
 [[nodiscard]] const MassProperties& body_mass_properties(const World& world, Entity body);
-[[nodiscard]] Vec3 body_position(const World& world, Entity body);         ///< [m], world.
+/// Shape origin [m], world (as BodyDef::position).
+[[nodiscard]] Vec3 body_position(const World& world, Entity body);
+/// Centre of mass [m], world.
+[[nodiscard]] Vec3 body_center_of_mass(const World& world, Entity body);
 [[nodiscard]] Quat body_orientation(const World& world, Entity body);      ///< world_from_body.
 [[nodiscard]] Vec3 body_linear_velocity(const World& world, Entity body);  ///< [m/s], world.
 [[nodiscard]] Vec3 body_angular_velocity(const World& world, Entity body); ///< [rad/s], world.

@@ -3,6 +3,7 @@
 // everything about one body is a free function in body.h.
 #pragma once
 
+#include "supermodal/contact.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -23,6 +24,7 @@ struct WorldDef {
     Vec3 gravity{0.0, -9.81, 0.0};  ///< [m/s²], world frame (Y-up).
     int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
                                     ///< dropping the rest of the backlog so a slow frame cannot spiral.
+    ContactDef contact{};           ///< Penalty contact settings.
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
@@ -33,10 +35,10 @@ struct WorldDef {
 
 /// The named stages of one step, in the order step() runs them.
 enum class Stage : uint8_t {
+    Broadphase,         ///< Once per step: pairs from boxes swept over the step; picks the substeps.
     IntegrateForces,    ///< Gravity and applied forces into velocities.
-    Broadphase,         ///< Candidate pairs (contact issue).
-    Narrowphase,        ///< Contact points (contact issue).
-    PenaltyForces,      ///< Contact and constraint springs (contact and constraints issues).
+    Narrowphase,        ///< Contact points per substep.
+    PenaltyForces,      ///< Contact (and, with issue #7, constraint) springs into velocities.
     ModalUpdate,        ///< Modal amplitudes (modal issue).
     IntegratePositions, ///< Velocities into poses; implicit gyroscopic term.
     UpdateSurfaces,     ///< Derived data: deformed surfaces, world bounds.
@@ -55,9 +57,11 @@ struct StepProfile {
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.
 struct StepWarnings {
-    uint64_t non_finite_bodies = 0;    ///< Bodies frozen because their state turned NaN/Inf.
-    Entity last_non_finite{};          ///< The last body frozen for that reason.
-    uint64_t gyroscopic_fallbacks = 0; ///< Spins too fast for the implicit midpoint solve (see docs).
+    uint64_t non_finite_bodies = 0;        ///< Bodies frozen because their state turned NaN/Inf.
+    Entity last_non_finite{};              ///< The last body frozen for that reason.
+    uint64_t gyroscopic_fallbacks = 0;     ///< Spins too fast for the implicit midpoint solve (see docs).
+    uint64_t contact_frequency_clamps = 0; ///< Pairs whose requested contact frequency exceeded 1/(10 h).
+    uint64_t speculative_substeps = 0;     ///< Extra substeps added so fast bodies cannot tunnel.
 };
 
 /// A saved copy of the world's dynamic state. Treat as opaque; restore() it into the same world.
@@ -65,8 +69,11 @@ struct Snapshot {
     double time = 0.0;
     uint64_t step_count = 0;
     double accumulator = 0.0;
-    std::vector<Entity> entities; ///< Bodies in index order.
-    std::vector<double> values;   ///< Packed per-body state, k_values_per_body each.
+    std::vector<Entity> entities;      ///< Bodies in index order.
+    std::vector<double> values;        ///< Packed per-body state, k_values_per_body each.
+    std::vector<uint64_t> anchor_keys; ///< Friction anchors: pair keys, sorted.
+    std::vector<Vec3> anchor_springs;  ///< Friction anchors: tangential spring extensions [m].
+    std::vector<double> anchor_twists; ///< Friction anchors: torsional spring angles [rad].
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

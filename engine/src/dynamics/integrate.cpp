@@ -32,8 +32,6 @@ void integrate_forces(const StepContext& ctx, Registry& reg)
 void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings)
 {
     reg.each<BodyModel, Velocity, Pose>([&](Entity, const BodyModel& body, Velocity& vel, Pose& pose) {
-        pose.prev_position = pose.position;
-        pose.prev_orientation = pose.orientation;
         switch (body.motion) {
         case MotionType::Static:
             return;
@@ -53,6 +51,14 @@ void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io
         pose.orientation = rot.orientation;
         vel.angular = rotate(pose.orientation, hadamard(body.inv_inertia_body, rot.momentum_body));
     });
+}
+
+void store_previous_poses(Registry& reg)
+{
+    for (Pose& pose : reg.store<Pose>().values()) {
+        pose.prev_position = pose.position;
+        pose.prev_orientation = pose.orientation;
+    }
 }
 
 void freeze_non_finite(Registry& reg, StepWarnings& io_warnings)

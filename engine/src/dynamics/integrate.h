@@ -24,6 +24,9 @@ void integrate_forces(const StepContext& ctx, Registry& reg);
 /// Velocities into poses; the gyroscopic term is solved implicitly. Kinematic bodies follow their
 /// velocities; static bodies never move.
 void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
+/// Remembers each pose at the start of a step: render interpolation blends from it, and the
+/// non-finite guard falls back to it.
+void store_previous_poses(Registry& reg);
 /// Freezes bodies whose state is no longer finite (zero velocity, last finite pose, kinematic), so a
 /// fault never spreads; counts each in io_warnings.
 void freeze_non_finite(Registry& reg, StepWarnings& io_warnings);

@@ -2,6 +2,8 @@
 // Closed-form superquadric volume and inertia (Jaklič, Leonardis & Solina, "Segmentation and Recovery
 // of Superquadrics", 2000, ch. 2), evaluated with log-Gamma so that ε down to 0.01 neither overflows
 // nor loses precision: each Beta value alone grows like 1/ε, but ε·B(·) stays finite.
+#include "geometry/mass_deformed.h"
+#include "supermodal/geometry.h"
 #include "supermodal/shape.h"
 
 #include <cmath>
@@ -30,6 +32,9 @@ double superquadric_volume(const ShapeDef& def)
 MassProperties compute_mass_properties(const ShapeDef& def, double density)
 {
     MassProperties mp;
+    // Taper, bend and hyperquadrics have no closed form: quadrature (mass_deformed.cpp).
+    if (def.type == ShapeType::Hyperquadric || (def.type == ShapeType::Superquadric && is_deformed(def)))
+        return quadrature_mass(def, density, k_default_mass_order).properties;
     if (def.type != ShapeType::Superquadric)
         return mp;
     const double e1 = def.epsilon1, e2 = def.epsilon2;

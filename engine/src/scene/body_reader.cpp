@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "scene/body_reader.h"
 
+#include "geometry/hyperquadric_solve.h"
 #include "scene/did_you_mean.h"
 #include "supermodal/shape.h"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <string>
 
 namespace supermodal::scene_io
 {
@@ -17,9 +19,12 @@ namespace
 const std::vector<std::string_view> k_body_keys = {
     "name",        "shape",    "material",         "density", "mass",          "position",
     "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics"};
-const std::vector<std::string_view> k_shape_types = {"superquadric", "plane"};
-const std::vector<std::string_view> k_superquadric_keys = {"type", "radii", "exponents", "taper", "bend"};
-const std::vector<std::string_view> k_plane_keys = {"type", "normal", "offset"};
+// In ShapeType order, so a choice's index is its enumerator; each type's keys at the same index.
+const std::vector<std::string_view> k_shape_types = {"superquadric", "plane", "hyperquadric"};
+const std::vector<std::vector<std::string_view>> k_shape_keys = {
+    {"type", "radii", "exponents", "taper", "bend"}, {"type", "normal", "offset"}, {"type", "terms"}};
+static_assert(static_cast<int>(ShapeType::Plane) == 1 && static_cast<int>(ShapeType::Hyperquadric) == 2);
+const std::vector<std::string_view> k_term_keys = {"normal", "offset", "exponent"};
 const std::vector<std::string_view> k_bend_keys = {"curvature", "angle"};
 const std::vector<std::string_view> k_dynamics_keys = {"type", "modes", "lattice"};
 // Both lists are in enum order, so a choice's index is its enumerator.
@@ -33,6 +38,10 @@ static_assert(static_cast<int>(DynamicsType::Rigid) == 0 && static_cast<int>(Dyn
 const Range k_exponent_range{.min = 0.0, .max = 4.0, .min_open = true};
 /// Barr taper factors: past ±1 the cross-section would shrink through zero inside the body.
 const Range k_taper_range = closed(-1.0, 1.0);
+/// Fewer than three terms cannot bound a 3-D body (their normals span at most a plane).
+constexpr size_t k_min_terms = 3;
+/// Every evaluation of H sums all terms; past this a scene is more likely broken than meant.
+constexpr size_t k_max_terms = 256;
 
 /// Material lookup for bodies: name → index into Scene::materials, plus the names in file order.
 struct MaterialIndex {
@@ -60,21 +69,23 @@ template <size_t N> bool normalize_components(double (&c)[N])
     return true;
 }
 
-/// Keys of the other shape type get a clearer message than "unknown key".
+/// Keys of another shape type get a clearer message than "unknown key".
 void check_shape_keys(Reader& r, const Json& shape, const std::string& where, ShapeType type)
 {
-    const bool is_plane = type == ShapeType::Plane;
-    const auto& own = is_plane ? k_plane_keys : k_superquadric_keys;
-    const auto& other = is_plane ? k_superquadric_keys : k_plane_keys;
+    const size_t own_index = static_cast<size_t>(type);
+    const auto& own = k_shape_keys[own_index];
     for (const auto& item : shape.items()) {
         const std::string& key = item.key();
-        if (std::find(own.begin(), own.end(), key) == own.end() &&
-            std::find(other.begin(), other.end(), key) != other.end()) {
-            r.fail(pointer_join(where, key), quote_text(key) + " does not apply to a " +
-                                                 (is_plane ? "plane" : "superquadric") + "; its keys are " +
-                                                 join_names(own));
-            return;
-        }
+        if (std::find(own.begin(), own.end(), key) != own.end())
+            continue;
+        for (size_t other = 0; other < k_shape_keys.size(); ++other)
+            if (other != own_index && std::find(k_shape_keys[other].begin(), k_shape_keys[other].end(),
+                                                key) != k_shape_keys[other].end()) {
+                r.fail(pointer_join(where, key), quote_text(key) + " does not apply to a " +
+                                                     std::string(k_shape_types[own_index]) +
+                                                     "; its keys are " + join_names(own));
+                return;
+            }
     }
     r.check_object(shape, where, own);
 }
@@ -116,6 +127,46 @@ void read_plane(Reader& r, const Json& shape, const std::string& where, ShapeDef
     r.field_number(shape, where, "offset", any_number(), out_shape.plane_offset);
 }
 
+void read_term(Reader& r, const Json& term, const std::string& where, HyperquadricTerm& out_term)
+{
+    if (!r.check_object(term, where, k_term_keys))
+        return;
+    if (const Json* normal = r.require(term, where, "normal")) {
+        r.read_vec3(*normal, pointer_join(where, "normal"), any_number(), out_term.normal);
+        if (r.ok() && out_term.normal == Vec3{})
+            r.fail(pointer_join(where, "normal"), "term normal has zero length");
+    }
+    r.field_number(term, where, "offset", any_number(), out_term.offset);
+    if (const Json* exponent = r.require(term, where, "exponent"))
+        r.read_number(*exponent, pointer_join(where, "exponent"), above(0.0), out_term.exponent);
+}
+
+void read_hyperquadric(Reader& r, const Json& shape, const std::string& where, ShapeDef& out_shape)
+{
+    const Json* terms = r.require(shape, where, "terms");
+    if (terms == nullptr)
+        return;
+    const std::string terms_where = pointer_join(where, "terms");
+    if (!terms->is_array() || terms->size() < k_min_terms || terms->size() > k_max_terms)
+        return r.fail(terms_where, "expected an array of " + std::to_string(k_min_terms) + " to " +
+                                       std::to_string(k_max_terms) +
+                                       " terms {\"normal\", \"offset\", \"exponent\"}, found " +
+                                       describe_value(*terms));
+    out_shape.terms.resize(terms->size());
+    for (size_t i = 0; i < terms->size(); ++i)
+        read_term(r, (*terms)[i], pointer_join(terms_where, i), out_shape.terms[i]);
+    if (!r.ok())
+        return;
+    const HyperquadricCenter center = hyperquadric_center(out_shape);
+    if (!center.is_bounded)
+        return r.fail(terms_where,
+                      "the term normals do not span 3-D (they lie in one plane or along one line), "
+                      "so the body would be unbounded; add a term whose normal leaves that plane");
+    if (!center.is_non_empty)
+        r.fail(terms_where, "the terms leave no inside: H >= 1 everywhere (smallest H found: " +
+                                format_number(std::exp(center.log_value)) + "); reduce the offsets");
+}
+
 void read_shape(Reader& r, const Json& shape, const std::string& where, ShapeDef& out_shape)
 {
     if (!r.ok())
@@ -128,12 +179,14 @@ void read_shape(Reader& r, const Json& shape, const std::string& where, ShapeDef
     if (!r.ok())
         return;
     out_shape = default_shape_def();
-    out_shape.type = type == 0 ? ShapeType::Superquadric : ShapeType::Plane;
+    out_shape.type = static_cast<ShapeType>(type);
     check_shape_keys(r, shape, where, out_shape.type);
     if (out_shape.type == ShapeType::Superquadric)
         read_superquadric(r, shape, where, out_shape);
-    else
+    else if (out_shape.type == ShapeType::Plane)
         read_plane(r, shape, where, out_shape);
+    else
+        read_hyperquadric(r, shape, where, out_shape);
 }
 
 /// Density from, in order of precedence: the body's "mass" (over the shape's volume), the body's
@@ -167,13 +220,15 @@ void read_density(Reader& r, const Json& body, const std::string& where, const S
         const std::string mass_where = pointer_join(where, "mass");
         if (density_value != nullptr)
             return r.fail(mass_where, "give either \"density\" or \"mass\", not both");
-        if (out_body.def.shape.type != ShapeType::Superquadric)
-            return r.fail(mass_where, "\"mass\" applies only to superquadrics (a plane is static)");
+        if (out_body.def.shape.type == ShapeType::Plane)
+            return r.fail(mass_where,
+                          "\"mass\" applies only to superquadrics and hyperquadrics (a plane is static)");
         double mass = 0.0;
         r.read_number(*mass_value, mass_where, above(0.0), mass);
         if (!r.ok())
             return;
-        const double volume = superquadric_volume(out_body.def.shape);
+        // Closed form for plain superquadrics; quadrature for tapered, bent and hyperquadric shapes.
+        const double volume = compute_mass_properties(out_body.def.shape, 1.0).volume;
         density = mass / volume;
         if (!(std::isfinite(density) && density > 0.0))
             return r.fail(mass_where, "a mass of " + format_number(mass) + " kg in a volume of " +

@@ -188,7 +188,14 @@ Result<World> build_world(const Scene& scene)
     }
     World world(scene.world);
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
-        if (create_body(world, scene.bodies[i].def).is_null())
+        BodyDef def = scene.bodies[i].def;
+        // Contact properties come from the body's material (density was resolved while reading).
+        for (const MaterialDef& m : scene.materials)
+            if (m.name == scene.bodies[i].material) {
+                def.friction = m.friction;
+                def.restitution = m.restitution;
+            }
+        if (create_body(world, def).is_null())
             return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};
     }
     return world;

@@ -16,6 +16,21 @@ const std::string k_no_name;
 const ShapeDef k_no_shape{};
 const MassProperties k_no_mass{};
 
+bool same_shape(const ShapeDef& a, const ShapeDef& b)
+{
+    auto same_terms = [&] {
+        for (size_t i = 0; i < a.terms.size(); ++i)
+            if (!(a.terms[i].normal == b.terms[i].normal && a.terms[i].offset == b.terms[i].offset &&
+                  a.terms[i].exponent == b.terms[i].exponent))
+                return false;
+        return true;
+    };
+    return a.type == b.type && a.radii == b.radii && a.epsilon1 == b.epsilon1 && a.epsilon2 == b.epsilon2 &&
+           a.taper.kx == b.taper.kx && a.taper.ky == b.taper.ky && a.bend.curvature == b.bend.curvature &&
+           a.bend.angle == b.bend.angle && a.plane_normal == b.plane_normal &&
+           a.plane_offset == b.plane_offset && a.terms.size() == b.terms.size() && same_terms();
+}
+
 // Looks up a live body; asserts (and returns null) on a stale or foreign handle.
 const World::Impl* live(const World& world, Entity e)
 {
@@ -31,6 +46,18 @@ World::Impl* live_mut(World& world, Entity e)
     SM_ASSERT(ok, "stale or null body handle");
     SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
     return ok && !w.locked ? &w : nullptr;
+}
+
+// Colliders are built once per distinct shape and shared: a pile of identical bodies holds one sample set.
+std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com)
+{
+    for (const auto& c : w.colliders)
+        if (same_shape(c->shape, shape) && c->com_shape == com)
+            return c;
+    auto c = std::make_shared<const Collider>(
+        make_collider(shape, com, w.def.contact.sample_spacing, w.def.contact.max_samples_per_body));
+    w.colliders.push_back(c);
+    return c;
 }
 
 bool finite_def(const BodyDef& d)
@@ -54,6 +81,10 @@ Status validate(const BodyDef& def)
         return Error{"", "motion", "a plane must be static"};
     if (def.motion == MotionType::Dynamic && (!(def.density > 0.0) || !std::isfinite(def.density)))
         return Error{"", "density", "expected a finite density > 0 kg/m^3"};
+    if (!(def.friction >= 0.0) || !std::isfinite(def.friction))
+        return Error{"", "friction", "expected a finite friction coefficient >= 0"};
+    if (!(def.restitution >= 0.0 && def.restitution <= 1.0))
+        return Error{"", "restitution", "expected a restitution in [0, 1]"};
     if (!finite_def(def))
         return Error{"", "pose", "expected finite position, orientation, velocities and gravity scale"};
     if (norm(def.orientation) == 0.0)
@@ -70,8 +101,11 @@ Entity create_body(World& world, const BodyDef& def)
     if (!status || w.locked)
         return Entity{};
     const Entity e = w.reg.create();
-    BodyModel model{
-        .name = def.name, .motion = def.motion, .shape = def.shape, .gravity_scale = def.gravity_scale};
+    BodyModel model;
+    model.name = def.name;
+    model.motion = def.motion;
+    model.shape = def.shape;
+    model.gravity_scale = def.gravity_scale;
     model.mass = compute_mass_properties(def.shape, def.density);
     if (def.motion == MotionType::Dynamic) {
         model.inv_mass = 1.0 / model.mass.mass;
@@ -79,9 +113,16 @@ Entity create_body(World& world, const BodyDef& def)
         const Vec3& i = model.inertia_body;
         model.inv_inertia_body = {1.0 / i.x, 1.0 / i.y, 1.0 / i.z};
     }
+    model.friction = def.friction;
+    model.restitution = def.restitution;
+    model.collider = collider_for(w, def.shape, model.mass.center_of_mass);
     const Quat q = normalized(def.orientation);
     w.reg.emplace(e, std::move(model));
-    w.reg.emplace(e, Pose{def.position, q, def.position, q});
+    const BodyModel& placed = w.reg.get<BodyModel>(e);
+    // Pose tracks the centre of mass; the public position is the shape origin (they differ when a
+    // taper or bend moves the centre of mass off the shape's origin).
+    const Vec3 com = def.position + rotate(q, placed.mass.center_of_mass);
+    w.reg.emplace(e, Pose{com, q, com, q});
     w.reg.emplace(e, Velocity{def.motion == MotionType::Static ? Vec3{} : def.linear_velocity,
                               def.motion == MotionType::Static ? Vec3{} : def.angular_velocity});
     w.reg.emplace(e, ForceAccumulator{});
@@ -141,6 +182,14 @@ const MassProperties& body_mass_properties(const World& world, Entity e)
 Vec3 body_position(const World& world, Entity e)
 {
     const World::Impl* w = live(world, e);
+    if (!w)
+        return {};
+    const Pose& p = w->reg.get<Pose>(e);
+    return p.position - rotate(p.orientation, w->reg.get<BodyModel>(e).mass.center_of_mass);
+}
+Vec3 body_center_of_mass(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
     return w ? w->reg.get<Pose>(e).position : Vec3{};
 }
 Quat body_orientation(const World& world, Entity e)
@@ -192,7 +241,9 @@ Vec3 body_interpolated_position(const World& world, Entity e)
         return {};
     const Pose& p = w->reg.get<Pose>(e);
     const double a = world.interpolation_alpha();
-    return (1.0 - a) * p.prev_position + a * p.position;
+    const Vec3 com = w->reg.get<BodyModel>(e).mass.center_of_mass;
+    return (1.0 - a) * (p.prev_position - rotate(p.prev_orientation, com)) +
+           a * (p.position - rotate(p.orientation, com));
 }
 Quat body_interpolated_orientation(const World& world, Entity e)
 {
@@ -214,15 +265,21 @@ void set_body_position(World& world, Entity e, const Vec3& position)
     SM_ASSERT(is_finite(position), "position must be finite");
     if (World::Impl* w = live_mut(world, e); w && is_finite(position)) {
         Pose& p = w->reg.get<Pose>(e);
-        p.position = p.prev_position = position; // a teleport: nothing to interpolate across
+        // A teleport: nothing to interpolate across.
+        p.position = p.prev_position =
+            position + rotate(p.orientation, w->reg.get<BodyModel>(e).mass.center_of_mass);
     }
 }
 void set_body_orientation(World& world, Entity e, const Quat& orientation)
 {
     SM_ASSERT(is_finite(orientation) && norm(orientation) > 0.0, "orientation must be finite and non-zero");
     if (World::Impl* w = live_mut(world, e); w && is_finite(orientation) && norm(orientation) > 0.0) {
+        // Turns about the shape origin, which stays where it was.
         Pose& p = w->reg.get<Pose>(e);
+        const Vec3 com = w->reg.get<BodyModel>(e).mass.center_of_mass;
+        const Vec3 origin = p.position - rotate(p.orientation, com);
         p.orientation = p.prev_orientation = normalized(orientation);
+        p.position = p.prev_position = origin + rotate(p.orientation, com);
     }
 }
 void set_body_linear_velocity(World& world, Entity e, const Vec3& velocity)

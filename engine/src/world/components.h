@@ -3,11 +3,13 @@
 // (what step() changes: hashed, snapshotted).
 #pragma once
 
+#include "contact/collider.h"
 #include "supermodal/body.h"
 #include "supermodal/math.h"
 #include "supermodal/shape.h"
 #include "world/registry.h"
 
+#include <memory>
 #include <string>
 
 namespace supermodal
@@ -19,10 +21,13 @@ struct BodyModel {
     MotionType motion = MotionType::Dynamic;
     ShapeDef shape{};
     MassProperties mass{};
-    double inv_mass = 0.0;      ///< [1/kg]; 0 for static and kinematic bodies.
-    Vec3 inertia_body{};        ///< Principal moments [kg·m²], body frame.
-    Vec3 inv_inertia_body{};    ///< [1/(kg·m²)], body frame; 0 for non-dynamic bodies.
-    double gravity_scale = 1.0; ///< [-].
+    double inv_mass = 0.0;                    ///< [1/kg]; 0 for static and kinematic bodies.
+    Vec3 inertia_body{};                      ///< Principal moments [kg·m²], body frame.
+    Vec3 inv_inertia_body{};                  ///< [1/(kg·m²)], body frame; 0 for non-dynamic bodies.
+    double gravity_scale = 1.0;               ///< [-].
+    double friction = 0.5;                    ///< Coulomb coefficient [-].
+    double restitution = 0.2;                 ///< [-].
+    std::shared_ptr<const Collider> collider; ///< Contact model (shared by identical shapes).
 };
 
 /// State: pose of the body frame, plus the pose before the last step (for render interpolation).

@@ -99,6 +99,13 @@ uint64_t World::state_hash() const
         for (size_t i : {0, 1, 2, 3, 4, 5, 6, 14, 15, 16, 17, 18, 19})
             fnv.f64(values[i]);
     });
+    for (const PairAnchor& a : w.contact.anchors) {
+        fnv.u64(a.key);
+        fnv.f64(a.spring.x);
+        fnv.f64(a.spring.y);
+        fnv.f64(a.spring.z);
+        fnv.f64(a.twist);
+    }
     return fnv.h;
 }
 
@@ -115,13 +122,19 @@ Snapshot World::snapshot() const
         s.entities.push_back(e);
         pack(w, e, s.values);
     });
+    for (const PairAnchor& a : w.contact.anchors) {
+        s.anchor_keys.push_back(a.key);
+        s.anchor_springs.push_back(a.spring);
+        s.anchor_twists.push_back(a.twist);
+    }
     return s;
 }
 
 Status World::restore(const Snapshot& s)
 {
     Impl& w = *m_impl;
-    if (s.values.size() != s.entities.size() * k_values_per_body)
+    if (s.values.size() != s.entities.size() * k_values_per_body ||
+        s.anchor_keys.size() != s.anchor_springs.size() || s.anchor_keys.size() != s.anchor_twists.size())
         return Error{"", "snapshot", "corrupt snapshot: value count does not match its bodies"};
     std::vector<Entity> live;
     w.reg.pool().for_each_alive([&](Entity e) {
@@ -132,6 +145,9 @@ Status World::restore(const Snapshot& s)
         return Error{"", "snapshot", "bodies were created or destroyed since this snapshot was taken"};
     for (size_t i = 0; i < live.size(); ++i)
         unpack(w, live[i], s.values.data() + i * k_values_per_body);
+    w.contact.anchors.clear();
+    for (size_t i = 0; i < s.anchor_keys.size(); ++i)
+        w.contact.anchors.push_back({s.anchor_keys[i], s.anchor_springs[i], s.anchor_twists[i]});
     w.time = s.time;
     w.step_count = s.step_count;
     w.accumulator = s.accumulator;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "supermodal/world.h"
 
+#include "contact/contact_system.h"
 #include "core/assert.h"
 #include "dynamics/integrate.h"
 #include "world/world_impl.h"
@@ -75,8 +76,8 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-// The step, stage by stage. Stages that later issues fill (contact, constraints, modes) are listed
-// now so the order is fixed in one place.
+// The step, stage by stage. Pairs come once per step from swept boxes, which also tells how many
+// substeps keep fast bodies from tunnelling; every other stage runs per substep.
 void World::Impl::step()
 {
     SM_ASSERT(!locked, "step() re-entered from a callback");
@@ -88,16 +89,21 @@ void World::Impl::step()
         fn();
         profile.stage_ms[static_cast<size_t>(stage)] += ms_since(start);
     };
-    const StepContext ctx = make_step_context(def);
+    store_previous_poses(reg);
+    int substeps = def.substep_count;
+    run(Stage::Broadphase, [&] { substeps = update_pairs(def, reg, contact); });
+    if (substeps > def.substep_count)
+        warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
+    StepContext ctx = make_step_context(def);
+    ctx.substep_count = substeps;
+    ctx.h = def.dt / substeps;
     for (int i = 0; i < ctx.substep_count; ++i) {
         run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
-        run(Stage::Broadphase, [] {});
-        run(Stage::Narrowphase, [] {});
-        run(Stage::PenaltyForces, [] {});
+        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, contact); });
+        run(Stage::PenaltyForces, [&] { apply_penalty_forces(def, ctx, reg, contact, warnings); });
         run(Stage::ModalUpdate, [] {});
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
         run(Stage::UpdateSurfaces, [] {});
-        time += ctx.h;
     }
     run(Stage::Events, [&] {
         freeze_non_finite(reg, warnings);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include "contact/contact_system.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
@@ -18,7 +19,9 @@ struct World::Impl {
     double accumulator = 0.0; ///< Real time not yet stepped [s].
     StepProfile profile{};
     StepWarnings warnings{};
-    bool locked = false; ///< True inside step(): mutations assert.
+    ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
+    std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
+    bool locked = false;                                    ///< True inside step(): mutations assert.
 
     void step();
 };

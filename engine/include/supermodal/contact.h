@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// Penalty contact: settings, and what the host can read back after a step.
+//
+// A touching pair pushes apart with a spring–damper whose stiffness comes from a natural frequency and
+// the pair's effective mass (k = m_eff·(2πf)², c = 2ζ·m_eff·2πf), so one setting is stable for any mass
+// ratio. Friction is a tangential spring anchored where the contact started to stick (Cundall–Strack),
+// clamped to the Coulomb cone; the anchors are part of the world's state (hashed, snapshotted).
+#pragma once
+
+#include "supermodal/entity.h"
+#include "supermodal/math.h"
+
+#include <cstdint>
+#include <span>
+
+namespace supermodal
+{
+
+class World;
+
+/// Which narrowphase finds contact points.
+enum class ContactPath : uint8_t {
+    Auto,       ///< Support map (MPR) for convex, undeformed superquadric pairs; sampling otherwise.
+    Sampling,   ///< Surface samples of each body tested with the other's inside-outside function.
+    SupportMap, ///< libccd MPR with the analytic support map where both bodies are convex (else sampling).
+};
+
+/// World-wide contact settings. Start from the defaults and change what differs.
+struct ContactDef {
+    bool enabled = true;
+    ContactPath path = ContactPath::Auto;
+    double frequency_hz = 0.0;       ///< Penalty natural frequency [Hz]; 0 = the stability cap 1/(10·h)
+                                     ///< with h the substep. Higher is stiffer (less penetration) but
+                                     ///< clamped to the cap; every clamp is counted.
+    double damping_ratio = -1.0;     ///< Normal damping ratio ζ [-]; < 0 = from the pair's restitution e:
+                                     ///< ζ = −ln e / √(π² + ln² e).
+    double sample_spacing = 0.0;     ///< Surface sample spacing [m]; 0 = a quarter of each body's
+                                     ///< smallest radius. Smaller is more accurate and slower.
+    int max_samples_per_body = 4000; ///< Cap on samples per body [-]; spacing widens to fit.
+    double speculative_speed_factor = 0.5; ///< Substep the world when a body would move more than this
+                                           ///< fraction of the thinnest body it may hit in one substep [-].
+    int max_auto_substeps = 64;            ///< Cap on the extra substeps that rule may add [-].
+};
+
+/// One contact after a step: where two bodies touch, summed over the pair's points.
+struct ContactInfo {
+    Entity a{};          ///< Lower entity index of the pair.
+    Entity b{};          ///< Higher entity index (or the plane / static body).
+    Vec3 point{};        ///< Force-weighted contact point [m], world.
+    Vec3 normal{};       ///< Unit normal from b towards a, world.
+    double depth = 0.0;  ///< Deepest penetration of the pair [m].
+    Vec3 force_on_a{};   ///< Total contact force on a (normal + friction) [N], world; b gets the opposite.
+    int point_count = 0; ///< Contact points (samples or manifold points) behind this contact [-].
+};
+
+/// The contacts found in the last step (the last substep), sorted by (a, b) index.
+[[nodiscard]] std::span<const ContactInfo> world_contacts(const World& world);
+/// The deepest penetration in the last step [m].
+[[nodiscard]] double world_max_penetration(const World& world);
+
+} // namespace supermodal

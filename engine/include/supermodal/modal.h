@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Modal bases: the lowest free vibration modes of a body, computed once from a finite-element lattice
+// over its shape (Williams & Pentland 1992; DESIGN.md §4 "Modal dynamics"). A basis is model data:
+// built once, immutable, shared by every body with the same shape, material and lattice.
+//
+// Frames and units. Everything lives in the shape frame (Barr: z is the polar axis), origin at the
+// shape's centre, in SI units. A body's deformation is u(p) = Σ_k φ_k(p) q_k [m], where the mode shapes
+// φ_k are mass-normalised (Φᵀ M Φ = I with M the lattice's consistent mass [kg]), so φ has units
+// 1/√kg and the modal amplitudes q have units √kg·m; each mode obeys q̈ + 2ζω q̇ + ω² q = φᵀ f.
+#pragma once
+
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+#include "supermodal/shape.h"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace supermodal
+{
+
+/// Largest mode_count a ModalBasisDef may ask for.
+inline constexpr int k_max_modes = 256;
+/// Largest cell count per lattice axis.
+inline constexpr int k_max_lattice_cells = 128;
+
+/// The hexahedral lattice over the shape's bounding box.
+struct LatticeDef {
+    std::array<int, 3> cells{};    ///< Cells along x, y, z; 0 = choose from the aspect ratio (about
+                                   ///< 8 along the longest side, at most 64 in all; 16 / 512 for order 1).
+    int element_order = 2;         ///< 1: 8-node trilinear (locks in bending); 2: 20-node serendipity.
+    int cut_cell_subdivisions = 4; ///< Sub-cells per axis for the quadrature of cells the surface cuts
+                                   ///< (2×2×2 Gauss points each); higher = truer boundary, slower build.
+};
+
+/// Which eigensolver a build uses.
+enum class ModalSolver : uint8_t {
+    Auto,   ///< Dense up to k_dense_dof_limit degrees of freedom, sparse above.
+    Dense,  ///< Eigen's dense generalized solver: every eigenpair; O(n³) time, O(n²) memory.
+    Sparse, ///< Spectra shift-invert Lanczos with a sparse LDLᵀ factorisation, only the lowest modes.
+};
+/// Auto switches to the sparse solver above this many degrees of freedom.
+inline constexpr int k_dense_dof_limit = 300;
+
+/// How to build a modal basis. Start from default_modal_basis_def() and change what differs.
+struct ModalBasisDef {
+    ShapeDef shape{};        ///< Superquadric (tapered/bent allowed) or hyperquadric; not Plane.
+    double density = 1000.0; ///< ρ [kg/m³], > 0.
+    double young = 1e7;      ///< Young's modulus E [Pa], > 0.
+    double poisson = 0.3;    ///< Poisson's ratio ν [-], in (−1, 0.5).
+    LatticeDef lattice{};    ///< Lattice resolution and element type.
+    int mode_count = 12;     ///< Elastic modes kept, r ∈ [1, k_max_modes]; rigid modes never.
+    ModalSolver solver = ModalSolver::Auto;
+};
+
+/// The documented starting point: a 1 m sphere of soft rubber-like material, 12 modes, 20-node cells.
+[[nodiscard]] ModalBasisDef default_modal_basis_def();
+/// Checks ranges (see the field comments) and the shape.
+[[nodiscard]] Status validate(const ModalBasisDef& def);
+
+/// A guess at what a mode looks like, from its displacement field about the body's longest axis
+/// (bodies without one, longest side under 1.5 × the next, get Other).
+enum class ModeKind : uint8_t {
+    Bend,    ///< Cross-sections translate sideways (beam bending).
+    Torsion, ///< Cross-sections rotate about the long axis.
+    Axial,   ///< Motion along the long axis (stretching).
+    Other,   ///< None of the above dominates (plate, breathing, mixed modes; compact bodies).
+};
+/// "bend", "torsion", "axial" or "other".
+[[nodiscard]] const char* mode_kind_name(ModeKind kind);
+
+/// How the basis came out: checks and costs. Filled by build_modal_basis.
+struct ModalDiagnostics {
+    std::array<double, 6> rigid_eigenvalues{}; ///< ω² of the six rigid-body modes before they were
+                                               ///< dropped [rad²/s²]; ~0 for a free body.
+    double first_elastic_eigenvalue = 0.0;     ///< ω₁² [rad²/s²].
+    double rigid_ratio = 0.0;                  ///< max |rigid eigenvalue| / first elastic eigenvalue [-].
+    double mass_orthonormality_error = 0.0;    ///< max |(Φᵀ M Φ − I)_ij| over the kept modes [-].
+    bool splits_degenerate_cluster = false;    ///< Mode r and r+1 share a frequency (within 1e-6): which
+                                               ///< of the pair is kept is arbitrary.
+    bool sparse_solver = false;                ///< The sparse (Spectra) path ran.
+    int solver_rounds = 0;         ///< Sparse path: Lanczos runs (more than 1 = deflated retries).
+    bool inertia_checked = false;  ///< Sparse path: a Sturm count confirmed no mode was missed.
+    int dof_count = 0;             ///< Degrees of freedom of the lattice (3 per node).
+    int kept_cell_count = 0;       ///< Cells with material in them.
+    int cut_cell_count = 0;        ///< Of those, cells the surface cuts (sub-cell quadrature).
+    int aggregated_cell_count = 0; ///< Slivers (cut cells too thinly sampled to integrate alone)
+                                   ///< merged into a neighbour whose field extends over them.
+    int dropped_sliver_count = 0;  ///< Slivers with no neighbour to merge into: material lost.
+    double assembly_seconds = 0.0; ///< Lattice, quadrature and sparse assembly [s].
+    double eigen_seconds = 0.0;    ///< Eigensolver, orthonormalisation, classification [s].
+};
+
+/// The lowest elastic modes of a body and the lattice they live on. Plain data, shape frame, SI.
+struct ModalBasis {
+    std::array<int, 3> cells{};       ///< Lattice cells per axis actually used.
+    int element_order = 2;            ///< 1: 8-node cells, 2: 20-node cells.
+    Vec3 lattice_min{};               ///< Low corner of the lattice box [m].
+    Vec3 cell_size{};                 ///< Edge lengths of one cell [m].
+    std::vector<Vec3> node_positions; ///< Rest positions of the lattice nodes that carry material [m].
+    std::vector<int32_t> cell_nodes;  ///< Per cell (x fastest, then y, z): nodes_per_cell indices
+                                      ///< into node_positions (8 or 20, the local order of
+                                      ///< engine/src/modal/lattice.h); −1 for a cell without material.
+    std::vector<int32_t> cell_proxy;  ///< Per cell: itself, or for a cell without nodes the nearest cell
+                                      ///< with them, whose field modal_displacement extends to it.
+    double density = 0.0, young = 0.0, poisson = 0.0; ///< The material it was built for (SI).
+    double mass = 0.0;                  ///< Mass of the lattice model, Σ over its consistent mass [kg].
+    int mode_count = 0;                 ///< r, the elastic modes kept.
+    std::vector<double> frequencies_hz; ///< (r) natural frequencies ω/2π, ascending [Hz].
+    std::vector<ModeKind> kinds;        ///< (r) guess per mode.
+    /// (node_count × 3 × r) mass-normalised mode shapes [1/√kg]: entry (node·3 + axis)·r + k.
+    std::vector<double> mode_shapes;
+    ModalDiagnostics diagnostics;
+};
+
+/// Nodes per cell of an element order: 8 or 20.
+[[nodiscard]] int lattice_nodes_per_cell(int element_order);
+
+/// Builds the lattice, integrates stiffness and mass over the body, solves K φ = ω² M φ, drops the six
+/// rigid modes and keeps the lowest mode_count elastic ones, mass-normalised. Errors: invalid def, a
+/// lattice with fewer elastic degrees of freedom than modes, more than six zero-frequency modes (the
+/// material falls apart into pieces on this lattice: refine it), or a solver that does not converge.
+[[nodiscard]] Result<ModalBasis> build_modal_basis(const ModalBasisDef& def);
+
+/// Where a point sits in a basis's lattice: the nodes whose shape functions reach it and their values.
+struct LatticeWeights {
+    std::array<int32_t, 20> nodes{};  ///< Indices into ModalBasis::node_positions.
+    std::array<double, 20> weights{}; ///< Shape-function values there [-]; they sum to 1.
+    int count = 0;                    ///< 8 or 20.
+};
+/// Shape-function weights of a rest-shape point [m] (shape frame). In a cell without nodes the field of
+/// its proxy cell is extended, at most one cell beyond it; points outside the lattice box are clamped
+/// onto it. Compute once per surface sample; then modal_displacement costs 3·count·r multiply-adds.
+[[nodiscard]] LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape);
+/// Displacement [m], shape frame, of a point with precomputed weights, for modal amplitudes q [√kg·m].
+/// q may hold fewer than mode_count amplitudes: the missing ones count as zero.
+[[nodiscard]] Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights,
+                                      std::span<const double> q);
+/// Displacement [m], shape frame, of a rest-shape point [m] for modal amplitudes q [√kg·m].
+[[nodiscard]] Vec3 modal_displacement(const ModalBasis& basis, const Vec3& point_shape,
+                                      std::span<const double> q);
+
+/// Shares bases between identical bodies: keyed by every field of the def (shape, material, lattice,
+/// mode count, solver), compared exactly. Thread-safe; a build runs outside the lock, so two threads
+/// asking for the same new basis may both build it (the first result is kept).
+class ModalBasisCache
+{
+  public:
+    /// The cached basis for def, building it on first use. Failed builds are not cached.
+    [[nodiscard]] Result<std::shared_ptr<const ModalBasis>> get_or_build(const ModalBasisDef& def);
+    [[nodiscard]] int size() const;
+    void clear();
+
+  private:
+    mutable std::mutex m_mutex;
+    std::map<std::string, std::shared_ptr<const ModalBasis>> m_entries;
+};
+
+} // namespace supermodal

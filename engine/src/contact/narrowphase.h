@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Narrowphase: contact points of one pair. Two paths (DESIGN.md §4):
+//  - sampling (the paper's): surface samples of one body tested with the other's inside-outside
+//    function, both ways; works for concave, tapered, bent bodies; each point carries a weight
+//    (its share of the touching surface area), so forces do not depend on the sample count;
+//  - support map (libccd MPR) for convex, undeformed pairs, with a small persistent manifold.
+#pragma once
+
+#include "contact/collider.h"
+#include "supermodal/geometry.h"
+
+#include <vector>
+
+namespace supermodal
+{
+
+/// A body as the narrowphase sees it.
+struct BodyView {
+    const Collider* collider = nullptr;
+    Vec3 position{};    ///< Centre of mass [m], world.
+    Quat orientation{}; ///< world_from_body.
+    Aabb box{};         ///< World box [m].
+};
+
+/// One contact point of a pair: push A along +normal, B along −normal.
+struct ContactPoint {
+    Vec3 point{};        ///< [m], world.
+    Vec3 normal{};       ///< Unit, from B towards A, world.
+    double depth = 0.0;  ///< Penetration [m], > 0.
+    double weight = 0.0; ///< Share of the pair's penalty force [-]; a pair's weights sum to 1.
+};
+
+/// Appends the points of A against B by surface sampling (both directions, weights summing to 1).
+/// Returns the number appended.
+int collide_sampled(const BodyView& a, const BodyView& b, std::vector<ContactPoint>& out_points);
+
+/// Appends the points of a body against a plane (normal from the plane towards the body when the
+/// body is A; flipped when body_is_a is false). Returns the number appended.
+int collide_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
+                  std::vector<ContactPoint>& out_points);
+
+/// Point of a shape-frame query: the contact measure and, when inside, depth and outward normal.
+struct InsideTest {
+    bool inside = false;
+    double depth = 0.0; ///< Approximate distance to the surface [m] (measure / |gradient|).
+    Vec3 normal{};      ///< Unit outward normal, shape frame.
+};
+/// Tests a shape-frame point against a collider's shape (deformed shapes through the inverse map).
+[[nodiscard]] InsideTest test_point(const Collider& c, const Vec3& p_shape);
+
+} // namespace supermodal

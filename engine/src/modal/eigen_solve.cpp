@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+// Lowest elastic modes of a free lattice (see eigen_solve.h).
+//
+// Dense path: Eigen's generalized solver on M φ = ν (K − σM) φ, ν = 1/(ω² − σ). The roles are swapped
+// on purpose: K − σM (σ < 0) is well conditioned and positive definite, while M may be nearly singular
+// where a node only touches a sliver of material, and a Cholesky of M would smear that over the lowest
+// modes.
+// Sparse path: Spectra's shift-invert Lanczos with a sparse LDLᵀ of K − σM. The six rigid modes are
+// known in closed form, so they are deflated (projected out of every Krylov vector) rather than found:
+// Lanczos sees one vector per distinct eigenvalue in exact arithmetic, and an exactly six-fold one
+// would converge slowly and unreliably. For the same reason it can miss copies of repeated elastic
+// frequencies, so a Sturm count (the inertia of an LDLᵀ of K − μM) checks that every eigenvalue below
+// the cut was found; missed ones are searched for with the found ones deflated too.
+// Both paths end with a Rayleigh–Ritz step on K and M themselves: it makes the kept vectors exactly
+// M-orthonormal and K-orthogonal (including inside clusters of repeated frequencies) and gives the
+// eigenvalues as Rayleigh quotients, free of the cancellation in 1/ν + σ.
+#include "modal/eigen_solve.h"
+
+#include "modal/spectrum.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymGEigsShiftSolver.h>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace supermodal::modal
+{
+namespace
+{
+
+using Dense = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+constexpr double k_shift_fraction = 1e-3;    // σ = −k · E/(ρℓ²): safely below every elastic ω²
+constexpr double k_cluster_tolerance = 1e-6; // relative gap below which two ω² count as repeated
+constexpr int k_max_rounds = 4;
+constexpr double k_lanczos_tolerance = 1e-10;
+
+/// M-orthonormalises the columns of v: v ← v L⁻ᵀ with vᵀMv = LLᵀ.
+bool m_orthonormalize(const SparseMatrix& m, Dense& v)
+{
+    const Dense g = v.transpose() * (m * v);
+    const Eigen::LLT<Dense> llt(0.5 * (g + g.transpose()));
+    if (llt.info() != Eigen::Success)
+        return false;
+    Dense vt = v.transpose();
+    llt.matrixL().solveInPlace(vt);
+    v = vt.transpose();
+    return true;
+}
+
+/// Rayleigh–Ritz on span(v): ascending Ritz values, Ritz vectors M-orthonormal and K-orthogonal.
+bool rayleigh_ritz(const SparseMatrix& k, const SparseMatrix& m, const Dense& v, Vector& out_values,
+                   Dense& out_vectors)
+{
+    Dense kr = v.transpose() * (k * v);
+    Dense mr = v.transpose() * (m * v);
+    kr = 0.5 * (kr + kr.transpose()).eval();
+    mr = 0.5 * (mr + mr.transpose()).eval();
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Dense> es(kr, mr);
+    if (es.info() != Eigen::Success)
+        return false;
+    out_values = es.eigenvalues();
+    out_vectors = v * es.eigenvectors();
+    return true;
+}
+
+/// (K − σM)⁻¹ x followed by the M-orthogonal projection away from the deflated vectors D (columns
+/// M-orthonormal): y ← y − D (MD)ᵀ y. Spectra's ShiftInvert mode applies M first.
+class DeflatedShiftInvert
+{
+  public:
+    using Scalar = double;
+
+    DeflatedShiftInvert(const SparseMatrix& k, const SparseMatrix& m, const Dense& deflate,
+                        const Dense& m_deflate)
+        : m_k(k), m_m(m), m_deflate(deflate), m_m_deflate(m_deflate)
+    {
+    }
+    [[nodiscard]] Eigen::Index rows() const { return m_k.rows(); }
+    [[nodiscard]] Eigen::Index cols() const { return m_k.cols(); }
+    void set_shift(double sigma)
+    {
+        m_ldlt.compute(SparseMatrix(m_k - sigma * m_m));
+        // σ < 0 makes K − σM positive definite; a non-positive pivot means it is numerically singular
+        // and the solves would feed Spectra NaNs.
+        m_ok = m_ldlt.info() == Eigen::Success && (m_ldlt.vectorD().array() > 0.0).all();
+    }
+    void perform_op(const double* x_in, double* y_out) const
+    {
+        const Eigen::Map<const Vector> x(x_in, m_k.rows());
+        Eigen::Map<Vector> y(y_out, m_k.rows());
+        y = m_ldlt.solve(x);
+        y -= m_deflate * (m_m_deflate.transpose() * y);
+    }
+    [[nodiscard]] bool ok() const { return m_ok; }
+
+  private:
+    const SparseMatrix& m_k;
+    const SparseMatrix& m_m;
+    const Dense& m_deflate;
+    const Dense& m_m_deflate;
+    Eigen::SimplicialLDLT<SparseMatrix> m_ldlt;
+    bool m_ok = false;
+};
+
+/// A fixed pseudo-random start vector (64-bit LCG), the same on every platform.
+Vector start_vector(Eigen::Index n)
+{
+    Vector v(n);
+    uint64_t x = 0x9E3779B97F4A7C15ull;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        v[i] = static_cast<double>(x >> 11) * 0x1.0p-53 - 0.5;
+    }
+    return v;
+}
+
+/// The `nev` largest eigenvalues of the deflated shift-invert operator, as M-orthonormal vectors.
+/// Spectra throws on nev/ncv out of range: the caller guarantees nev + 1 < n − deflate.cols().
+bool run_lanczos(const SparseMatrix& k, const SparseMatrix& m, const Dense& deflate, int nev, double sigma,
+                 Dense& out_vectors)
+{
+    using Solver = Spectra::SymGEigsShiftSolver<DeflatedShiftInvert, Spectra::SparseSymMatProd<double>,
+                                                Spectra::GEigsMode::ShiftInvert>;
+    const Dense m_deflate = m * deflate;
+    DeflatedShiftInvert op(k, m, deflate, m_deflate);
+    Spectra::SparseSymMatProd<double> bop(m);
+    const auto free_dim = static_cast<int>(k.rows() - deflate.cols());
+    const int ncv = std::min(free_dim, std::max(2 * nev + 1, nev + 20));
+    Solver geigs(op, bop, nev, ncv, sigma);
+    if (!op.ok())
+        return false;
+    Vector v0 = start_vector(k.rows());
+    v0 -= deflate * (m_deflate.transpose() * v0);
+    geigs.init(v0.data());
+    geigs.compute(Spectra::SortRule::LargestMagn, 1000, k_lanczos_tolerance, Spectra::SortRule::SmallestAlge);
+    if (geigs.info() != Spectra::CompInfo::Successful)
+        return false;
+    out_vectors = geigs.eigenvectors();
+    return out_vectors.allFinite();
+}
+
+/// Number of eigenvalues of (K, M) below μ (Sylvester: negative pivots of LDLᵀ of K − μM), or −1.
+int count_below(const SparseMatrix& k, const SparseMatrix& m, double mu)
+{
+    const Eigen::SimplicialLDLT<SparseMatrix> ldlt(SparseMatrix(k - mu * m));
+    if (ldlt.info() != Eigen::Success)
+        return -1;
+    return static_cast<int>((ldlt.vectorD().array() < 0.0).count());
+}
+
+/// A cut μ between the wanted-th value (0-based) and the next distinct one above it.
+double sturm_cut(const Vector& values, int wanted)
+{
+    const double top = values[wanted];
+    for (Eigen::Index j = wanted + 1; j < values.size(); ++j)
+        if (values[j] > top * (1.0 + k_cluster_tolerance))
+            return 0.5 * (values[j - 1] + values[j]);
+    return values[values.size() - 1] * (1.0 + k_cluster_tolerance);
+}
+
+/// Dense: the `count` lowest eigenvectors (rigid ones included), not yet orthonormalised.
+bool solve_dense(const LatticeModel& model, int count, double sigma, Dense& out_vectors)
+{
+    const Dense k(model.stiffness), m(model.mass);
+    const Dense a = k - sigma * m;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Dense> es(m, a); // ascending ν = 1/(ω² − σ)
+    if (es.info() != Eigen::Success)
+        return false;
+    out_vectors = es.eigenvectors().rightCols(count);
+    return out_vectors.allFinite();
+}
+
+/// Sparse: the rigid vectors followed by at least `wanted` elastic ones, Sturm-checked.
+bool solve_sparse(const LatticeModel& model, int wanted, double sigma, Dense& out_vectors, int& out_rounds,
+                  bool& out_checked)
+{
+    const SparseMatrix& k = model.stiffness;
+    const SparseMatrix& m = model.mass;
+    Dense rigid = rigid_body_vectors(model);
+    if (!m_orthonormalize(m, rigid))
+        return false;
+    Dense found(k.rows(), 0);
+    Vector values;
+    int nev = wanted + 1; // one spare: Lanczos converges the outermost wanted values last
+    out_checked = false;
+    for (out_rounds = 1; out_rounds <= k_max_rounds; ++out_rounds) {
+        Dense deflate(k.rows(), rigid.cols() + found.cols());
+        deflate << rigid, found;
+        if (nev + 1 >= k.rows() - deflate.cols())
+            return false;
+        Dense fresh;
+        if (!run_lanczos(k, m, deflate, nev, sigma, fresh))
+            return false;
+        Dense merged(k.rows(), found.cols() + fresh.cols());
+        merged << found, fresh;
+        if (!rayleigh_ritz(k, m, merged, values, found))
+            return false;
+        const double mu = sturm_cut(values, wanted - 1);
+        const int below = count_below(k, m, mu);
+        const auto expected = static_cast<int>(6 + (values.array() < mu).count());
+        if (below < 0)
+            break; // singular at μ: cannot check, keep what Lanczos found
+        if (below <= expected) {
+            out_checked = true;
+            break;
+        }
+        nev = below - expected + 2; // missed copies of repeated eigenvalues: look again, found ones deflated
+    }
+    out_vectors.resize(k.rows(), rigid.cols() + found.cols());
+    out_vectors << rigid, found;
+    return true;
+}
+
+} // namespace
+
+Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, ModalSolver solver,
+                                 double eigenvalue_scale)
+{
+    const int n = model.dof_count();
+    if (mode_count > n - 6)
+        return Error{"", "/lattice",
+                     "the lattice has only " + std::to_string(n - 6) +
+                         " elastic degrees of freedom, fewer than the modes asked for (" +
+                         std::to_string(mode_count) + "): refine it or ask for fewer modes"};
+    const double sigma = -k_shift_fraction * eigenvalue_scale;
+    ModeSolution out;
+    out.sparse = solver == ModalSolver::Sparse || (solver == ModalSolver::Auto && n > k_dense_dof_limit);
+    // Lanczos needs room beyond the wanted vectors; tiny lattices always go dense.
+    out.sparse = out.sparse && mode_count + 10 < n - 6;
+    Dense vectors;
+    const bool solved =
+        out.sparse ? solve_sparse(model, mode_count + 1, sigma, vectors, out.rounds, out.inertia_checked)
+                   : solve_dense(model, std::min(n, mode_count + 7), sigma, vectors);
+    Vector values;
+    Dense ritz;
+    if (!solved || !rayleigh_ritz(model.stiffness, model.mass, vectors, values, ritz) ||
+        values.size() < 6 + mode_count)
+        return Error{"", "/lattice", "the eigensolver did not converge"};
+
+    const RigidSplit split =
+        split_rigid_modes(std::span<const double>(values.data(), values.size()), eigenvalue_scale);
+    if (!split.ok)
+        return Error{"", "/lattice", split.problem};
+    for (int i = 0; i < 6; ++i)
+        out.rigid_eigenvalues[i] = values[i];
+    out.eigenvalues = values.segment(6, mode_count);
+    out.vectors = ritz.middleCols(6, mode_count);
+    if (values.size() > 6 + mode_count)
+        out.next_eigenvalue = values[6 + mode_count];
+    return out;
+}
+
+} // namespace supermodal::modal

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// The generalized eigenproblem K φ = ω² M φ of a free lattice: the six rigid modes found and dropped,
+// the lowest elastic modes kept, mass-normalised.
+#pragma once
+
+#include "modal/assembly.h"
+
+#include <array>
+
+namespace supermodal::modal
+{
+
+/// Lowest elastic modes of a lattice model.
+struct ModeSolution {
+    Eigen::VectorXd eigenvalues;               ///< (r) ω² ascending [rad²/s²].
+    Eigen::MatrixXd vectors;                   ///< (3n × r) mass-normalised: Φᵀ M Φ = I.
+    std::array<double, 6> rigid_eigenvalues{}; ///< ω² of the rigid modes before dropping [rad²/s²].
+    double next_eigenvalue = 0.0;              ///< ω²_(r+1) when it was computed, else 0.
+    bool sparse = false;
+    int rounds = 0;
+    bool inertia_checked = false;
+};
+
+/// Solves for the lowest `mode_count` elastic modes. `eigenvalue_scale` [rad²/s²] is E/(ρ ℓ²) for the
+/// body's largest extent ℓ: it sets the shift (−1e-3 of it) and the zero-mode threshold (spectrum.h).
+/// Rigid modes are detected by count and by their gap to the first elastic eigenvalue
+/// (split_rigid_modes); a seventh zero mode (a lattice that falls apart) is an error.
+[[nodiscard]] Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, ModalSolver solver,
+                                               double eigenvalue_scale);
+
+} // namespace supermodal::modal

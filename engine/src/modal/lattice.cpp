@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// Lattice numbering and hexahedral shape functions (see lattice.h).
+#include "modal/lattice.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace supermodal::modal
+{
+namespace
+{
+
+CellNodes make_cell_nodes(int order)
+{
+    CellNodes c;
+    for (int k = 0; k <= order; ++k)
+        for (int j = 0; j <= order; ++j)
+            for (int i = 0; i <= order; ++i) {
+                // Serendipity: corners and edge midpoints only (at most one index at the midpoint).
+                if (order == 2 && (i == 1) + (j == 1) + (k == 1) > 1)
+                    continue;
+                c.offset[c.count] = {i, j, k};
+                c.xi[c.count] = {2.0 * i / order - 1.0, 2.0 * j / order - 1.0, 2.0 * k / order - 1.0};
+                ++c.count;
+            }
+    return c;
+}
+
+const CellNodes k_linear_nodes = make_cell_nodes(1);
+const CellNodes k_serendipity_nodes = make_cell_nodes(2);
+
+} // namespace
+
+const CellNodes& cell_nodes_of_order(int order)
+{
+    return order == 1 ? k_linear_nodes : k_serendipity_nodes;
+}
+
+void shape_functions(int order, const std::array<double, 3>& xi, double* n_out, std::array<double, 3>* dn_out)
+{
+    const CellNodes& nodes = cell_nodes_of_order(order);
+    for (int a = 0; a < nodes.count; ++a) {
+        const std::array<double, 3>& c = nodes.xi[a];
+        // Linear factor (1 + ξ ξa) per axis where the node is at a corner coordinate; the serendipity
+        // edge node has one axis with ξa = 0, where the factor is the bubble (1 − ξ²).
+        double f[3], df[3];
+        int mid_axis = -1;
+        for (int d = 0; d < 3; ++d) {
+            if (c[d] == 0.0) {
+                mid_axis = d;
+                f[d] = 1.0 - xi[d] * xi[d];
+                df[d] = -2.0 * xi[d];
+            } else {
+                f[d] = 1.0 + xi[d] * c[d];
+                df[d] = c[d];
+            }
+        }
+        if (order == 1) {
+            n_out[a] = 0.125 * f[0] * f[1] * f[2];
+            dn_out[a] = {0.125 * df[0] * f[1] * f[2], 0.125 * f[0] * df[1] * f[2],
+                         0.125 * f[0] * f[1] * df[2]};
+        } else if (mid_axis >= 0) {
+            n_out[a] = 0.25 * f[0] * f[1] * f[2];
+            dn_out[a] = {0.25 * df[0] * f[1] * f[2], 0.25 * f[0] * df[1] * f[2], 0.25 * f[0] * f[1] * df[2]};
+        } else {
+            // Corner: N = ⅛ Π(1 + ξ ξa) · (Σ ξ ξa − 2).
+            const double s = xi[0] * c[0] + xi[1] * c[1] + xi[2] * c[2] - 2.0;
+            const double p = f[0] * f[1] * f[2];
+            n_out[a] = 0.125 * p * s;
+            dn_out[a] = {0.125 * (df[0] * f[1] * f[2] * s + p * c[0]),
+                         0.125 * (f[0] * df[1] * f[2] * s + p * c[1]),
+                         0.125 * (f[0] * f[1] * df[2] * s + p * c[2])};
+        }
+    }
+}
+
+void Lattice::cell_grid_nodes(int i, int j, int k, int32_t* out) const
+{
+    const CellNodes& nodes = cell_nodes_of_order(order);
+    for (int a = 0; a < nodes.count; ++a) {
+        const std::array<int, 3>& o = nodes.offset[a];
+        out[a] = grid_index(order * i + o[0], order * j + o[1], order * k + o[2]);
+    }
+}
+
+std::array<int, 3> resolve_cells(const std::array<int, 3>& requested, int order, const Vec3& extent)
+{
+    // About 8 cells along the longest side (16 for order 1), the others in proportion, but at most 64
+    // cells in all (512): a compact body needs fewer cells than a slender one for the same accuracy,
+    // and the sparse factorisation grows quickly with a 3-D lattice.
+    const int n_min = order == 1 ? 2 : 1;
+    const int budget = order == 1 ? 512 : 64;
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    std::array<int, 3> cells{};
+    for (int n_long = order == 1 ? 16 : 8; n_long >= n_min; --n_long) {
+        for (int d = 0; d < 3; ++d) {
+            const auto proportional = static_cast<int>(std::lround(n_long * extent[d] / longest));
+            cells[d] = requested[d] > 0 ? requested[d] : std::max(n_min, proportional);
+        }
+        if (cells[0] * cells[1] * cells[2] <= budget)
+            break;
+    }
+    return cells;
+}
+
+void locate(const Lattice& lattice, const Vec3& p, std::array<int, 3>& out_cell,
+            std::array<double, 3>& out_xi)
+{
+    for (int d = 0; d < 3; ++d) {
+        double u = (p[d] - lattice.min[d]) / lattice.cell_size[d]; // in cells
+        if (std::isnan(u))
+            u = 0.0; // a NaN point must not become an out-of-range index
+        const double cell = std::clamp(std::floor(u), 0.0, static_cast<double>(lattice.cells[d] - 1));
+        out_cell[d] = static_cast<int>(cell);
+        out_xi[d] = std::clamp(2.0 * (u - cell) - 1.0, -1.0, 1.0);
+    }
+}
+
+} // namespace supermodal::modal
