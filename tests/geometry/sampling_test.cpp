@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 #include <numbers>
+#include <string>
 #include <vector>
 
 namespace sm = supermodal;

@@ -1,4 +1,5 @@
 // Tests for engine/src/geometry/superquadric.cpp.
+#include "geometry/superquadric.h"
 #include "supermodal/geometry.h"
 
 #include <algorithm>
@@ -68,6 +69,18 @@ TEST(Superquadric, EllipsoidMatchesAnalyticValues)
     const sm::Vec3 expected{0.3 / std::sqrt(f), -1.5 / 4.0 / std::sqrt(f), 2.0 / 9.0 / std::sqrt(f)};
     for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(g[i], expected[i], k_round_off);
+}
+
+TEST(Superquadric, EllipsoidShortcutAgreesWithLogSpace)
+{
+    // Ellipsoids skip the log space while max |p_i / a_i| ∈ [1e-100, 1e100]; both paths round
+    // differently, by a few ulps of ln F (absolute, since ln F is O(1)…O(460) here).
+    constexpr double k_paths_agree = 1e-13;
+    const sm::ShapeDef s = superquadric({0.5, 2, 1000}, 1, 1);
+    for (const sm::Vec3& p : {sm::Vec3{0.1, -0.3, 20}, sm::Vec3{0.5, 0, 0}, sm::Vec3{1e-90, 3e-90, 0},
+                              sm::Vec3{4e99, -1e99, 1e101}, sm::Vec3{-0.25, 1.0, 700}})
+        EXPECT_NEAR(sm::inside_outside_log(s, p), sm::sq::log_terms(s, p).log_f,
+                    k_paths_agree * (1.0 + std::abs(sm::sq::log_terms(s, p).log_f)));
 }
 
 TEST(Superquadric, BoxAndOctahedronLimits)
@@ -293,67 +306,100 @@ TEST(Superquadric, ClosestPointErrorBoundHoldsAgainstBruteForce)
             }
 }
 
-TEST(Superquadric, NoNanOrInfOverTheExtremes)
+namespace
 {
-    // 10^6 evaluations of each point function (and of the parametric ones) over ε × aspect × point
-    // classes: centre, axes, coordinate planes, near the surface, 10^6 radii away, denormal-small.
-    constexpr int k_per_case = 1'000'000 / (8 * 8 * 5) + 1;
-    constexpr int k_closest_per_case = 4; // closest_point costs ~10 µs: 1280 calls
-    std::mt19937_64 rng(3);
+
+// A point of one of eight classes for shape s: centre, on an axis, on a coordinate plane, near the
+// surface, 10^6 radii away, denormal-small, exactly on the surface, or anywhere in the 2×-box.
+sm::Vec3 extreme_point(std::mt19937_64& rng, const sm::ShapeDef& s, int kind)
+{
     std::uniform_real_distribution<double> unit(-1, 1);
+    const sm::Vec3 u{unit(rng), unit(rng), unit(rng)}, a = s.radii;
+    sm::Vec3 p;
+    switch (kind) {
+    case 0:
+        return p;
+    case 1:
+        p[int(3 * std::abs(u.x)) % 3] = 2 * u.y * a[int(3 * std::abs(u.x)) % 3];
+        return p;
+    case 2:
+        p = sm::hadamard(u, a) * 2.0;
+        p[int(3 * std::abs(u.z)) % 3] = 0;
+        return p;
+    case 3:
+        return sm::surface_point(s, u.x * k_pi / 2, u.y * k_pi) * (1.0 + 1e-3 * u.z);
+    case 4:
+        return sm::hadamard(u, a) * 1e6;
+    case 5:
+        return u * 1e-300;
+    case 6:
+        return sm::surface_point(s, u.x * k_pi / 2, u.y * k_pi);
+    default:
+        return sm::hadamard(u, a) * 2.0;
+    }
+}
+
+// Evaluations per (ε1, ε2, radii) case so that the extremes grid gets 10^6 in all.
+constexpr int k_per_case = 1'000'000 / (8 * 8 * 5) + 1;
+
+} // namespace
+
+TEST(Superquadric, NoNanOrInfFromPointFunctions)
+{
+    // 10^6 points over ε × aspect × point class, each through every point function.
+    std::mt19937_64 rng(3);
     std::uniform_int_distribution<int> kind(0, 7);
     long evaluations = 0;
     for (double e1 : k_extreme_eps)
         for (double e2 : k_extreme_eps)
             for (const sm::Vec3& a : k_extreme_radii) {
                 const sm::ShapeDef s = superquadric(a, e1, e2);
-                const auto random_point = [&](int k) -> sm::Vec3 {
-                    const sm::Vec3 u{unit(rng), unit(rng), unit(rng)};
-                    switch (k) {
-                    case 0:
-                        return {};
-                    case 1: {
-                        sm::Vec3 p;
-                        const int i = int(3 * std::abs(u.x)) % 3;
-                        p[i] = 2 * u.y * a[i];
-                        return p;
-                    }
-                    case 2: {
-                        sm::Vec3 p = sm::hadamard(u, a) * 2.0;
-                        p[int(3 * std::abs(u.z)) % 3] = 0;
-                        return p;
-                    }
-                    case 3:
-                        return sm::surface_point(s, u.x * k_pi / 2, u.y * k_pi) * (1.0 + 1e-3 * u.z);
-                    case 4:
-                        return sm::hadamard(u, a) * 1e6;
-                    case 5:
-                        return u * 1e-300;
-                    case 6:
-                        return sm::surface_point(s, u.x * k_pi / 2, u.y * k_pi);
-                    default:
-                        return sm::hadamard(u, a) * 2.0;
-                    }
-                };
                 for (int n = 0; n < k_per_case; ++n, ++evaluations) {
-                    const sm::Vec3 p = random_point(kind(rng));
+                    const sm::Vec3 p = extreme_point(rng, s, kind(rng));
                     ASSERT_TRUE(std::isfinite(sm::inside_outside_log(s, p)));
                     ASSERT_TRUE(std::isfinite(sm::inside_outside(s, p)));
                     ASSERT_TRUE(std::isfinite(sm::contact_measure(s, p)));
                     ASSERT_TRUE(sm::is_finite(sm::contact_measure_gradient(s, p)));
-                    const sm::Vec3 nrm = sm::implicit_normal(s, p);
-                    ASSERT_NEAR(sm::length(nrm), 1.0, 1e-12) << p.x << " " << p.y << " " << p.z;
+                    ASSERT_NEAR(sm::length(sm::implicit_normal(s, p)), 1.0, 1e-12)
+                        << p.x << " " << p.y << " " << p.z;
                     ASSERT_TRUE(std::isfinite(sm::radial_distance(s, p)));
+                }
+            }
+    EXPECT_GE(evaluations, 1'000'000);
+}
+
+TEST(Superquadric, NoNanOrInfFromParametricFunctions)
+{
+    // 10^6 (η, ω) pairs, a share of them exactly at the poles and on the ω = 0 meridian.
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    long evaluations = 0;
+    for (double e1 : k_extreme_eps)
+        for (double e2 : k_extreme_eps)
+            for (const sm::Vec3& a : k_extreme_radii) {
+                const sm::ShapeDef s = superquadric(a, e1, e2);
+                for (int n = 0; n < k_per_case; ++n, ++evaluations) {
                     const double eta = n % 17 == 0 ? k_pi / 2 : unit(rng) * k_pi / 2;
                     const double omega = n % 13 == 0 ? 0.0 : unit(rng) * k_pi;
                     ASSERT_TRUE(sm::is_finite(sm::surface_point(s, eta, omega)));
                     ASSERT_NEAR(sm::length(sm::surface_normal(s, eta, omega)), 1.0, 1e-12);
                 }
-                for (int n = 0; n < k_closest_per_case; ++n) {
-                    const sm::SurfaceProjection r = sm::closest_point(s, random_point(n % 8));
+            }
+    EXPECT_GE(evaluations, 1'000'000);
+}
+
+TEST(Superquadric, NoNanOrInfFromClosestPoint)
+{
+    // Every point class on every case of the grid: 2560 projections (~20 µs each).
+    std::mt19937_64 rng(6);
+    for (double e1 : k_extreme_eps)
+        for (double e2 : k_extreme_eps)
+            for (const sm::Vec3& a : k_extreme_radii) {
+                const sm::ShapeDef s = superquadric(a, e1, e2);
+                for (int kind = 0; kind < 8; ++kind) {
+                    const sm::SurfaceProjection r = sm::closest_point(s, extreme_point(rng, s, kind));
                     ASSERT_TRUE(sm::is_finite(r.point) && sm::is_finite(r.normal));
                     ASSERT_TRUE(std::isfinite(r.distance) && std::isfinite(r.error_bound));
                 }
             }
-    EXPECT_GE(evaluations, 1'000'000);
 }

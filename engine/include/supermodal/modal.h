@@ -59,7 +59,8 @@ struct ModalBasisDef {
     ModalSolver solver = ModalSolver::Auto;
 };
 
-/// The documented starting point: a 1 m sphere of soft rubber-like material, 12 modes, 20-node cells.
+/// The documented starting point: a sphere of 1 m diameter, soft (E = 10 MPa, ν = 0.3, ρ = 1000 kg/m³),
+/// 12 modes, 20-node cells on an automatic lattice (4³).
 [[nodiscard]] ModalBasisDef default_modal_basis_def();
 /// Checks ranges (see the field comments) and the shape.
 [[nodiscard]] Status validate(const ModalBasisDef& def);
@@ -106,7 +107,8 @@ struct ModalBasis {
     std::vector<Vec3> node_positions; ///< Rest positions of the lattice nodes that carry material [m].
     std::vector<int32_t> cell_nodes;  ///< Per cell (x fastest, then y, z): nodes_per_cell indices
                                       ///< into node_positions (8 or 20, the local order of
-                                      ///< engine/src/modal/lattice.h); −1 for a cell without material.
+                                      ///< engine/src/modal/lattice.h); −1 for a cell without nodes
+                                      ///< (empty, or a sliver merged into its proxy).
     std::vector<int32_t> cell_proxy;  ///< Per cell: itself, or for a cell without nodes the nearest cell
                                       ///< with them, whose field modal_displacement extends to it.
     double density = 0.0, young = 0.0, poisson = 0.0; ///< The material it was built for (SI).

@@ -7,6 +7,7 @@
 #include "supermodal/entity.h"
 #include "supermodal/geometry.h"
 #include "supermodal/math.h"
+#include "supermodal/modal.h"
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
 #include "supermodal/shape.h"

@@ -97,9 +97,13 @@ Collider make_collider(const ShapeDef& shape, const Vec3& com_shape, double spac
         s.point -= com_shape;
         grow(c.local_box, s.point);
     }
-    // The samples' box misses the surface between samples by at most about half a spacing.
-    c.local_box.min -= Vec3{h, h, h} * 0.5;
-    c.local_box.max += Vec3{h, h, h} * 0.5;
+    // The exact box of the shape (support map / tessellation), not the samples' box: axis extremes
+    // are rarely samples, and at ε ≥ 2 they can lie several spacings beyond the nearest one.
+    const Aabb exact = world_aabb(shape, -com_shape, Quat::identity());
+    for (int i = 0; i < 3; ++i) {
+        c.local_box.min[i] = std::min(c.local_box.min[i], exact.min[i]);
+        c.local_box.max[i] = std::max(c.local_box.max[i], exact.max[i]);
+    }
     const Vec3 extent = c.local_box.max - c.local_box.min;
     c.thickness = std::min({extent.x, extent.y, extent.z});
     c.samples = bucket_samples(std::move(raw), h);

@@ -231,7 +231,9 @@ void ring_cells(const SphericalProduct& sp, const LoopSegments& seg, const Ring&
                 out.push_back({start[f] + (i + 0.5) * width, 0.5 * width});
         }
     }
-    if (ring.count > 1)
+    // Most rings are nowhere wide enough to split: skip the per-cell look-ups for them.
+    const double widest = std::hypot(ring.width_s, std::sqrt(seg.max_support2) * ring.width_c);
+    if (ring.count > 1 && bounded_ratio(widest, step) >= k_min_rows_ratio)
         for (Cell& c : out) {
             const double width = std::hypot(ring.width_s, support_at(sp, seg, c.u) * ring.width_c);
             const double rows = bounded_ratio(width, step);

@@ -15,6 +15,9 @@
 // with p = h × h' the support distance of the horizontal curve, and its unit normal is (m_x·n_h, m_z)
 // where n_h is the horizontal curve's unit normal and m the unit normal of the meridian curve
 // (p·c, a3·s). Both follow from ∂/∂u × ∂/∂(meridian) and need no Barr angle.
+//
+// Everything declared here is implemented in tessellate.cpp (the mesh is this parametrisation's grid);
+// sampling.cpp builds the sample layout and the area integral on top of it.
 #pragma once
 
 #include "supermodal/math.h"
@@ -125,6 +128,7 @@ struct MeridianPoint {
 struct LoopSegments {
     std::vector<double> length;   ///< ℓ_k [m].
     std::vector<double> support2; ///< p_k², the squared support distance of the chord's line [m²].
+    double max_support2 = 0.0;    ///< Largest p_k² [m²].
 };
 [[nodiscard]] LoopSegments loop_segments(const SphericalProduct& sp);
 

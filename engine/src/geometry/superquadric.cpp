@@ -5,9 +5,9 @@
 // Closest point: the surface is charted by central projection of the scaled cube (sq::chart_eval).
 // Seeds pick a start: the radial projection, the axis tips, the perpendicular and (inside) the
 // axis-parallel ray hits, and three ever-smaller scans of the chart region that can still beat the
-// best. A trust-region Newton method on the two free chart coordinates, with a central-difference
-// Hessian of the analytic gradient, refines it; outside, support points of the direction to p
-// (exact vertices and tips) are taken whenever nearer. The bound is described in docs/geometry.md.
+// best; each face's best seed near the overall best is refined by trust-region Newton on the two
+// free chart coordinates (central-difference Hessian of the analytic gradient); outside, nearer
+// support points of the direction to p (exact vertices, tips) are taken. Bound: docs/geometry.md.
 // These functions treat every shape as the undeformed superquadric its radii and exponents describe:
 // callers pass superquadrics (taper and bend live in deform.cpp).
 #include "geometry/superquadric.h"
@@ -20,23 +20,41 @@
 
 namespace supermodal
 {
+namespace
+{
+
+// ln F alone. Ellipsoids (ε1 = ε2 = 1, the common case) take F = Σ u_i² directly, one log instead of
+// seven transcendentals, while the largest u_i lies in [1e-100, 1e100]: there the squares neither
+// overflow nor underflow, and a term lost below 1e-200 of the largest changes nothing.
+double log_f_only(const ShapeDef& shape, const Vec3& p)
+{
+    if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
+        const Vec3 u{p.x / shape.radii.x, p.y / shape.radii.y, p.z / shape.radii.z};
+        const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
+        if (m >= 1e-100 && m <= 1e100)
+            return std::log(dot(u, u));
+    }
+    return sq::log_terms(shape, p).log_f;
+}
+
+} // namespace
 
 double inside_outside_log(const ShapeDef& shape, const Vec3& p)
 {
-    const double log_f = sq::log_terms(shape, p).log_f;
+    const double log_f = log_f_only(shape, p);
     return log_f == sq::k_neg_inf ? -sq::k_huge : log_f;
 }
 
 double inside_outside(const ShapeDef& shape, const Vec3& p)
 {
-    const double log_f = sq::log_terms(shape, p).log_f;
+    const double log_f = log_f_only(shape, p);
     return log_f > sq::k_log_huge ? sq::k_huge : std::exp(log_f);
 }
 
 double contact_measure(const ShapeDef& shape, const Vec3& p)
 {
     // expm1 keeps full relative precision of the small values near the surface, where contact lives.
-    const double s = 0.5 * shape.epsilon1 * sq::log_terms(shape, p).log_f;
+    const double s = 0.5 * shape.epsilon1 * log_f_only(shape, p);
     return s > sq::k_log_huge ? sq::k_huge : std::expm1(s);
 }
 
@@ -100,7 +118,7 @@ double radial_distance(const ShapeDef& shape, const Vec3& p)
     const double m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     if (m == 0.0)
         return -shape.radii.z; // the centre: along +z, the direction implicit_normal reports there
-    const double s = 0.5 * shape.epsilon1 * sq::log_terms(shape, p).log_f;
+    const double s = 0.5 * shape.epsilon1 * log_f_only(shape, p);
     const double r = length(p / m) * m;
     if (s > -1.0) // |p|·(1 − F^(−ε1/2)), with expm1 for precision near the surface
         return -r * std::expm1(-s);
@@ -115,9 +133,7 @@ namespace
 {
 
 using sq::chart_eval;
-using sq::chart_of;
 using sq::ChartPoint;
-using sq::face_of;
 
 // Newton stops once the tangential part t of p − x gives (|r| − |r·n|) = t²/(|r| + |r·n|) below this
 // fraction of the largest radius: a few hundred ulps, the precision x itself is computed to.
@@ -145,10 +161,8 @@ constexpr double k_restart_ratio = 1.5;
 template <class Consider>
 void scan_ball(const ShapeDef& shape, const Vec3& p, double reach, Consider&& consider)
 {
-    const Vec3 lo =
-        hadamard(p - Vec3{reach, reach, reach}, {1 / shape.radii.x, 1 / shape.radii.y, 1 / shape.radii.z});
-    const Vec3 hi =
-        hadamard(p + Vec3{reach, reach, reach}, {1 / shape.radii.x, 1 / shape.radii.y, 1 / shape.radii.z});
+    const Vec3 inv_a{1 / shape.radii.x, 1 / shape.radii.y, 1 / shape.radii.z}, ball{reach, reach, reach};
+    const Vec3 lo = hadamard(p - ball, inv_a), hi = hadamard(p + ball, inv_a);
     for (int face = 0; face < 6; ++face) {
         const int k = face / 2;
         const double s = face % 2 == 0 ? 1.0 : -1.0;
@@ -194,7 +208,7 @@ FaceSeeds face_seeds(const ShapeDef& shape, const Vec3& p)
     const auto consider = [&](const Vec3& u) {
         if (!is_finite(u))
             return;
-        const int face = face_of(u);
+        const int face = sq::face_of(u);
         const ChartPoint q = chart_eval(shape, p, u, face);
         ChartPoint& slot = best[2 * face + (u[face] < 0.0 ? 1 : 0)];
         if (q.f < slot.f)
@@ -202,7 +216,7 @@ FaceSeeds face_seeds(const ShapeDef& shape, const Vec3& p)
         best_f = std::min(best_f, q.f);
     };
     if (p.x != 0.0 || p.y != 0.0 || p.z != 0.0)
-        consider(chart_of(shape, p));
+        consider(sq::chart_of(shape, p));
     // Axis tips: the cusps of concave shapes, where the chart is too stretched for the scan to land.
     for (int i = 0; i < 6; ++i) {
         Vec3 c;
@@ -212,7 +226,7 @@ FaceSeeds face_seeds(const ShapeDef& shape, const Vec3& p)
     std::array<Vec3, 9> hits;
     const int hit_count = sq::ray_hits(shape, p, contact_measure(shape, p) < 0.0, hits);
     for (int i = 0; i < hit_count; ++i)
-        consider(chart_of(shape, hits[i]));
+        consider(sq::chart_of(shape, hits[i]));
     // Each scan shrinks the ball to the best distance so far, so the next one is denser where it
     // matters; one that did not shrink it much would only repeat itself.
     double reach = INFINITY;
@@ -226,23 +240,11 @@ FaceSeeds face_seeds(const ShapeDef& shape, const Vec3& p)
     return best;
 }
 
-// |r| − side·(r·n), side = +1 outside and −1 inside: how much the tangent plane at x would let the
-// distance shrink. Large when p lies on the wrong side of that plane (a stationary point that is not
-// the nearest, such as the foot of p on a far facet).
-double tangential_gap(const Vec3& r, const Vec3& n, double side)
-{
-    const double d = length(r), dn = side * dot(r, n);
-    if (dn <= 0.0)
-        return d - dn;
-    const Vec3 t = r - dot(r, n) * n;
-    return dot(t, t) / (d + dn); // = d − dn without the cancellation
-}
-
 // One trust-region Newton step on the two free chart coordinates. Returns false when the region has
 // shrunk below round-off.
 bool newton_step(const ShapeDef& shape, const Vec3& p, ChartPoint& q, double& radius)
 {
-    const int face = face_of(q.u);
+    const int face = sq::face_of(q.u);
     double h[2][2];
     for (int k = 0; k < 2; ++k) {
         const int j = (face + 1 + k) % 3;
@@ -273,8 +275,9 @@ bool newton_step(const ShapeDef& shape, const Vec3& p, ChartPoint& q, double& ra
         u[(face + 1) % 3] += s0;
         u[(face + 2) % 3] += s1;
         if (std::abs(u[(face + 1) % 3]) > 1.0 || std::abs(u[(face + 2) % 3]) > 1.0)
-            u = sq::warp_from_c(shape, sq::unwarp_to_c(shape, u, face)); // onto the face the ray now crosses
-        const ChartPoint trial = chart_eval(shape, p, u, face_of(u));
+            u = sq::warp_from_c(shape,
+                                sq::rewarp(shape, u, face, false)); // onto the face the ray now crosses
+        const ChartPoint trial = chart_eval(shape, p, u, sq::face_of(u));
         if (trial.f <= q.f) {
             radius = std::min(1.0, std::max(radius, 2.0 * std::min(len, radius)));
             q = trial;
@@ -296,11 +299,15 @@ struct Gap {
 };
 Gap projection_gap(const ShapeDef& shape, const Vec3& p, const Vec3& x, double side)
 {
+    // |r| − side·(r·n) (side = +1 outside, −1 inside): how much the tangent plane at x would let the
+    // distance shrink; large when p lies behind it (a stationary point that is not the nearest, such
+    // as the foot of p on a far facet). Computed as |t|²/(|r| + side·(r·n)), t the tangential part.
     Gap g;
     const Vec3 r = p - x;
     g.normal = implicit_normal(shape, x);
-    g.bound = tangential_gap(r, g.normal, side);
-    const double d = length(r);
+    const double d = length(r), dn = side * dot(r, g.normal);
+    const Vec3 t = r - dot(r, g.normal) * g.normal;
+    g.bound = dn <= 0.0 ? d - dn : dot(t, t) / (d + dn);
     if (side > 0.0 && d > 0.0) {
         // Outside, the plane through the support point of r̂ separates p from the (hull of the) body
         // by r̂·p − h(r̂), a lower bound on the distance even at edges and tips, where no single
@@ -343,8 +350,7 @@ Refined refine(const ShapeDef& shape, const Vec3& p, double side, const ChartPoi
         // Newton step: on its own this fixed-point step converges just linearly.
         const Vec3 s = out.gap.support;
         if (out.gap.has_support && 0.5 * dot(p - s, p - s) < out.q.f) {
-            const Vec3 u = chart_of(shape, s);
-            out.q = chart_eval(shape, p, u, face_of(u));
+            out.q = sq::chart_at(shape, p, s);
             out.gap = projection_gap(shape, p, out.q.x, side);
         } else if (!moved) {
             break;
@@ -362,36 +368,33 @@ Refined refine(const ShapeDef& shape, const Vec3& p, double side, const ChartPoi
 SurfaceProjection closest_point(const ShapeDef& shape, const Vec3& p)
 {
     const double side = contact_measure(shape, p) > 0.0 ? 1.0 : -1.0;
-    FaceSeeds seeds = face_seeds(shape, p);
-    std::sort(seeds.begin(), seeds.end(), [](const ChartPoint& a, const ChartPoint& b) { return a.f < b.f; });
-    // Refine the best seed, then those of other faces that start not much farther: different faces
-    // hold the competing local minima (a box's faces seen from inside, a concave shape's arms).
-    Refined best = refine(shape, p, side, seeds[0]);
+    const FaceSeeds seeds = face_seeds(shape, p);
+    std::array<int, 6> order = {0, 1, 2, 3, 4, 5}; // by distance, ties by face: a total order
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return seeds[a].f < seeds[b].f || (seeds[a].f == seeds[b].f && a < b); });
+    Refined best = refine(shape, p, side, seeds[order[0]]);
     int iterations = best.iterations;
-    for (int i = 1; i < 6 && seeds[i].f <= k_restart_ratio * k_restart_ratio * seeds[0].f; ++i) {
-        const Refined r = refine(shape, p, side, seeds[i]);
+    const auto try_seed = [&](const ChartPoint& seed) {
+        const Refined r = refine(shape, p, side, seed);
         iterations += r.iterations;
         if (r.q.f < best.q.f)
             best = r;
-    }
+    };
+    // Refine those of other faces that start not much farther: different faces hold the competing
+    // local minima (a box's faces seen from inside, a concave shape's arms).
+    for (int i = 1; i < 6 && seeds[order[i]].f <= k_restart_ratio * k_restart_ratio * seeds[order[0]].f; ++i)
+        try_seed(seeds[order[i]]);
     // Outside, a minimum with p behind its tangent plane is the foot on a far facet: the support point
     // of the direction to p lies on the near side, so start once more from there.
-    if (side > 0.0 && best.gap.has_support && dot(p - best.q.x, implicit_normal(shape, best.q.x)) < 0.0) {
-        const Vec3 u = chart_of(shape, best.gap.support);
-        const Refined r = refine(shape, p, side, chart_eval(shape, p, u, face_of(u)));
-        iterations += r.iterations;
-        if (r.q.f < best.q.f)
-            best = r;
-    }
-    SurfaceProjection out;
-    out.point = best.q.x;
-    out.normal = best.gap.normal;
-    out.distance = side * length(p - best.q.x);
+    if (side > 0.0 && best.gap.has_support && dot(p - best.q.x, implicit_normal(shape, best.q.x)) < 0.0)
+        try_seed(sq::chart_at(shape, p, best.gap.support));
     // x itself lies on the surface only to the precision of its measure, which adds |measure|·|x|.
-    out.error_bound = best.gap.bound + std::abs(contact_measure(shape, best.q.x)) * length(best.q.x);
-    out.iterations = iterations;
-    out.converged = best.converged;
-    return out;
+    return {.point = best.q.x,
+            .normal = best.gap.normal,
+            .distance = side * length(p - best.q.x),
+            .error_bound = best.gap.bound + std::abs(contact_measure(shape, best.q.x)) * length(best.q.x),
+            .iterations = iterations,
+            .converged = best.converged};
 }
 
 } // namespace supermodal

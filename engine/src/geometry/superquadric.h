@@ -135,27 +135,19 @@ inline double warp(const ShapeDef& shape, int k, int j)
     return std::max(1.0, 0.5 * e);
 }
 
-/// Cube coordinates c of warped chart coordinates u on a face.
-inline Vec3 unwarp_to_c(const ShapeDef& shape, const Vec3& u, int face)
+/// Cube coordinates c of warped chart coordinates u on a face (inverse = false), or the reverse.
+inline Vec3 rewarp(const ShapeDef& shape, Vec3 v, int face, bool inverse)
 {
-    Vec3 c = u;
-    for (int m = 1; m <= 2; ++m) {
-        const int j = (face + m) % 3;
-        c[j] = signed_power(u[j], warp(shape, face, j));
-    }
-    return c;
+    for (int j : {(face + 1) % 3, (face + 2) % 3})
+        v[j] = signed_power(v[j], inverse ? 1.0 / warp(shape, face, j) : warp(shape, face, j));
+    return v;
 }
 
 /// Warped chart coordinates of any non-zero scaled direction c (put on its cube face first).
 inline Vec3 warp_from_c(const ShapeDef& shape, Vec3 c)
 {
     c = c / std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
-    const int face = face_of(c);
-    for (int m = 1; m <= 2; ++m) {
-        const int j = (face + m) % 3;
-        c[j] = signed_power(c[j], 1.0 / warp(shape, face, j));
-    }
-    return c;
+    return rewarp(shape, c, face_of(c), true);
 }
 
 /// Surface point of chart coordinates u on a face, with the distance objective for target p.
@@ -163,7 +155,7 @@ inline ChartPoint chart_eval(const ShapeDef& shape, const Vec3& p, const Vec3& u
 {
     ChartPoint q;
     q.u = u;
-    const Vec3 w = hadamard(shape.radii, unwarp_to_c(shape, u, face));
+    const Vec3 w = hadamard(shape.radii, rewarp(shape, u, face, false));
     const LogTerms t = log_terms(shape, w);
     const double s = 0.5 * shape.epsilon1 * t.log_f;
     const double g = std::exp(s);
@@ -190,6 +182,13 @@ inline ChartPoint chart_eval(const ShapeDef& shape, const Vec3& p, const Vec3& u
 inline Vec3 chart_of(const ShapeDef& shape, const Vec3& x)
 {
     return warp_from_c(shape, {x.x / shape.radii.x, x.y / shape.radii.y, x.z / shape.radii.z});
+}
+
+/// The chart point on the ray through a non-zero shape point x, for target p.
+inline ChartPoint chart_at(const ShapeDef& shape, const Vec3& p, const Vec3& x)
+{
+    const Vec3 u = chart_of(shape, x);
+    return chart_eval(shape, p, u, face_of(u));
 }
 
 // ---- Ray hits: seeds for the closest point ------------------------------------------------------------

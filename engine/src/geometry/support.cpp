@@ -49,6 +49,13 @@ DualResult dual_level(double c0, double c1, double eps)
         }
         return out;
     }
+    if (eps == 1.0) { // the ellipsoid, q = 2: a square root instead of five powers
+        const double root = std::sqrt(r[0] * r[0] + r[1] * r[1]);
+        out.norm = m * root;
+        out.v[0] = sign[0] * r[0] / root;
+        out.v[1] = sign[1] * r[1] / root;
+        return out;
+    }
     const double q = 2.0 / (2.0 - eps);
     const double rq[2] = {std::pow(r[0], q), std::pow(r[1], q)};
     const double sum = rq[0] + rq[1]; // in [1, 2]: the largest ratio is exactly 1

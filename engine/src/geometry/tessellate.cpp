@@ -269,6 +269,7 @@ LoopSegments loop_segments(const SphericalProduct& sp)
         seg.length[k] = h.arc[k + 1] - h.arc[k];
         const double support = seg.length[k] > 0.0 ? std::abs(x0 * y1 - x1 * y0) / seg.length[k] : 0.0;
         seg.support2[k] = support * support;
+        seg.max_support2 = std::max(seg.max_support2, seg.support2[k]);
     }
     return seg;
 }
