@@ -1,5 +1,6 @@
 // Tests for engine/src/geometry/bounds.cpp.
 #include "supermodal/geometry.h"
+#include "support/shapes.h"
 
 #include <algorithm>
 #include <array>
@@ -15,14 +16,7 @@ namespace
 
 constexpr double k_pi = std::numbers::pi;
 
-sm::ShapeDef superquadric(sm::Vec3 radii, double e1, double e2)
-{
-    sm::ShapeDef s = sm::default_shape_def();
-    s.radii = radii;
-    s.epsilon1 = e1;
-    s.epsilon2 = e2;
-    return s;
-}
+using supermodal::test::superquadric;
 
 sm::Quat random_orientation(std::mt19937_64& rng)
 {

@@ -1,5 +1,6 @@
 // Tests for engine/src/geometry/mass_properties.cpp.
 #include "supermodal/shape.h"
+#include "support/shapes.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -10,14 +11,7 @@ namespace sm = supermodal;
 namespace
 {
 
-sm::ShapeDef superquadric(sm::Vec3 radii, double e1, double e2)
-{
-    sm::ShapeDef s = sm::default_shape_def();
-    s.radii = radii;
-    s.epsilon1 = e1;
-    s.epsilon2 = e2;
-    return s;
-}
+using supermodal::test::superquadric;
 
 // lgamma-based Beta values carry ~1e-15 relative error each; a few products stay below 1e-12.
 constexpr double k_closed_form_rel = 1e-12;

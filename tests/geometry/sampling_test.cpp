@@ -3,6 +3,7 @@
 #include "geometry/sampling.h"
 #include "supermodal/geometry.h"
 #include "supermodal/shape.h"
+#include "support/shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,14 +18,7 @@ namespace sm = supermodal;
 namespace
 {
 
-sm::ShapeDef superquadric(sm::Vec3 radii, double e1, double e2)
-{
-    sm::ShapeDef s = sm::default_shape_def();
-    s.radii = radii;
-    s.epsilon1 = e1;
-    s.epsilon2 = e2;
-    return s;
-}
+using supermodal::test::superquadric;
 
 double total_area(const std::vector<sm::SurfaceSample>& samples)
 {

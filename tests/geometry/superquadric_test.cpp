@@ -1,6 +1,7 @@
 // Tests for engine/src/geometry/superquadric.cpp.
 #include "geometry/superquadric.h"
 #include "supermodal/geometry.h"
+#include "support/shapes.h"
 
 #include <algorithm>
 #include <array>
@@ -16,14 +17,7 @@ namespace
 
 constexpr double k_pi = std::numbers::pi;
 
-sm::ShapeDef superquadric(sm::Vec3 radii, double e1, double e2)
-{
-    sm::ShapeDef s = sm::default_shape_def();
-    s.radii = radii;
-    s.epsilon1 = e1;
-    s.epsilon2 = e2;
-    return s;
-}
+using supermodal::test::superquadric;
 
 // The extremes DESIGN.md names: ε from 0.01 (box) through 2 (octahedron) to 4 (concave star).
 constexpr std::array<double, 8> k_extreme_eps = {0.01, 0.1, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};

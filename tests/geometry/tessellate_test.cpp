@@ -1,6 +1,7 @@
 // Tests for engine/src/geometry/tessellate.cpp.
 #include "supermodal/geometry.h"
 #include "supermodal/shape.h"
+#include "support/shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,14 +14,7 @@ namespace sm = supermodal;
 namespace
 {
 
-sm::ShapeDef superquadric(sm::Vec3 radii, double e1, double e2)
-{
-    sm::ShapeDef s = sm::default_shape_def();
-    s.radii = radii;
-    s.epsilon1 = e1;
-    s.epsilon2 = e2;
-    return s;
-}
+using supermodal::test::superquadric;
 
 // Every directed edge appears once and its reverse once: each edge has exactly two triangles and they
 // agree on orientation (a closed, consistently oriented 2-manifold). Also checks index range.
