@@ -310,11 +310,61 @@ TEST(SceneLoaderErrors, TopLevelMustBeAnObject)
     EXPECT_TRUE(fails_at("3", "", "found 3"));
 }
 
-TEST(SceneLoaderErrors, ConstraintsAreRefused)
+TEST(SceneLoaderErrors, ConstraintsNameTheirPointer)
 {
-    EXPECT_TRUE(fails_at(R"({"constraints": [{"type": "point"}]})", "/constraints",
-                         "constraints are not supported yet (issue #7)"));
     EXPECT_TRUE(fails_at(R"({"constraints": {}})", "/constraints", "expected an array"));
+    EXPECT_TRUE(
+        fails_at(R"({"constraints": [{"a": "x"}]})", "/constraints/0", "missing required key \"type\""));
+    const std::string two =
+        R"({"bodies": [{"name": "seat", "shape": {"type": "superquadric", "radii": [1, 1, 1]}},
+                                           {"name": "leg", "shape": {"type": "superquadric", "radii": [1, 1, 1]}}],
+                                "constraints": [)";
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seta"}]})", "/constraints/0/a",
+                         "no body named \"seta\"; did you mean \"seat\"?"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "hinge", "a": "seat"}]})", "/constraints/0/type", "hinge"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "b": "seat"}]})", "/constraints/0/b",
+                         "two different bodies"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "frequency": 0}]})",
+                         "/constraints/0/frequency", "> 0"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "anchor_a": {"direction": [0, 0, 0]}}]})",
+                         "/constraints/0/anchor_a/direction", "non-zero"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "anchor_a": {"surface": [2, 0]}}]})",
+                         "/constraints/0/anchor_a/surface/0", "latitude"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "weld", "a": "seat", "b": "leg", "swing_limit": 1}]})",
+                         "/constraints/0", "\"point\" constraints only"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "anchor_b": {"direction": [1, 0, 0]}}]})",
+                         "/constraints/0/anchor_b", "world must be a point"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "collide_connected": 1}]})",
+                         "/constraints/0/collide_connected", "true or false"));
+    EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "anchr_a": [0, 0, 0]}]})",
+                         "/constraints/0/anchr_a", "did you mean \"anchor_a\""));
+}
+
+TEST(SceneLoader, ConstraintsBuildIntoTheWorld)
+{
+    const sm::Result<sm::Scene> scene = sm::parse_scene(R"({
+      "bodies": [{"name": "seat", "shape": {"type": "superquadric", "radii": [0.2, 0.2, 0.05]}},
+                 {"name": "leg", "position": [0, -0.3, 0], "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.1]}}],
+      "constraints": [{"name": "j", "type": "distance", "a": "seat", "b": "leg",
+                       "anchor_a": {"direction": [0, 0, -1]}, "anchor_b": [0, 0.5, 0],
+                       "frequency": 12, "damping_ratio": 0.3, "break_force": 1e4},
+                      {"type": "weld", "a": "leg", "b": "world", "anchor_b": [0, 1, 0]}]})");
+    ASSERT_TRUE(scene) << scene.error().message();
+    ASSERT_EQ(scene->constraints.size(), 2u);
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    const sm::Constraint j = sm::find_constraint(*world, "j");
+    ASSERT_FALSE(j.is_null());
+    const sm::ConstraintDef& d = sm::constraint_def(*world, j);
+    EXPECT_EQ(d.type, sm::ConstraintType::Distance);
+    EXPECT_EQ(d.frequency_hz, 12.0);
+    EXPECT_EQ(d.damping_ratio, 0.3);
+    EXPECT_EQ(d.break_force, 1e4);
+    EXPECT_EQ(d.a, sm::find_body(*world, "seat"));
+    // The direction anchor sits on the seat's surface: 0.05 m below its centre along −z.
+    const auto [pa, pb] = sm::constraint_anchors(*world, j);
+    EXPECT_NEAR(pa.z, -0.05, 1e-12);
+    EXPECT_EQ(sm::world_constraints(*world).size(), 2u);
 }
 
 TEST(SceneLoaderErrors, ModalDynamicsAreRefused)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "supermodal/body.h"
+#include "supermodal/constraint.h"
 #include "supermodal/result.h"
 #include "supermodal/world.h"
 
@@ -37,6 +38,12 @@ struct SceneBody {
     DynamicsType dynamics = DynamicsType::Rigid;
 };
 
+/// One constraint of a scene: its def with the bodies named (b empty = the world).
+struct SceneConstraint {
+    ConstraintDef def;  ///< def.a and def.b are filled in by build_world().
+    std::string body_a;
+    std::string body_b;
+};
 /// A parsed, validated scene.
 struct Scene {
     std::string source; ///< File it came from, or "<string>".
@@ -44,13 +51,14 @@ struct Scene {
     double duration = 5.0;              ///< Default run length [s], > 0.
     std::vector<MaterialDef> materials; ///< In file order.
     std::vector<SceneBody> bodies;      ///< In file order; creation order in the world.
+    std::vector<SceneConstraint> constraints; ///< In file order, created after the bodies.
 };
 
 /// Reads and validates a scene file.
 [[nodiscard]] Result<Scene> load_scene(const std::string& path);
 /// Parses and validates scene JSON text; `source` names it in errors.
 [[nodiscard]] Result<Scene> parse_scene(std::string_view json_text, const std::string& source = "<string>");
-/// Makes a world holding the scene's bodies, created in file order.
+/// Makes a world holding the scene's bodies and then its constraints, created in file order.
 [[nodiscard]] Result<World> build_world(const Scene& scene);
 
 } // namespace supermodal

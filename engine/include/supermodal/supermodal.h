@@ -4,6 +4,7 @@
 
 #include "supermodal/assert.h"
 #include "supermodal/body.h"
+#include "supermodal/constraint.h"
 #include "supermodal/contact.h"
 #include "supermodal/entity.h"
 #include "supermodal/geometry.h"

@@ -25,12 +25,15 @@ struct WorldDef {
     int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
                                     ///< dropping the rest of the backlog so a slow frame cannot spiral.
     ContactDef contact{};           ///< Penalty contact settings.
+    int constraint_iterations = 4;  ///< Gauss–Seidel passes over the constraint springs per substep [-],
+                                    ///< in [1, 100]; more lets chains of unequal masses hold tighter.
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
 [[nodiscard]] WorldDef default_world_def();
 
-/// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1.
+/// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1,
+/// constraint_iterations in [1, 100].
 [[nodiscard]] Status validate(const WorldDef& def);
 
 /// The named stages of one step, in the order step() runs them.
@@ -74,6 +77,9 @@ struct Snapshot {
     std::vector<uint64_t> anchor_keys; ///< Friction anchors: pair keys, sorted.
     std::vector<Vec3> anchor_springs;  ///< Friction anchors: tangential spring extensions [m].
     std::vector<double> anchor_twists; ///< Friction anchors: torsional spring angles [rad].
+    std::vector<Entity> constraints;   ///< Constraint handles (as entities) in index order.
+    std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
+    uint64_t broken_constraint_count = 0;
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

@@ -124,6 +124,12 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         io.proxies.push_back({.entity = e, .box = box, .is_static = m.motion != MotionType::Dynamic});
     });
     find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+    if (!io.excluded_pairs.empty())
+        std::erase_if(io.pairs, [&](const BodyPair& pair) {
+            const uint64_t key =
+                (uint64_t{std::min(pair.a.index, pair.b.index)} << 32) | std::max(pair.a.index, pair.b.index);
+            return std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), key);
+        });
 
     // Tunnelling rule: substep so that no pair closes by more than a fraction of the thinner body per
     // substep (measured in tests/contact/contact_system_test.cpp: a 50 m/s ball and a 2 cm board).

@@ -41,6 +41,7 @@ struct ContactWorld {
     std::vector<BroadphaseProxy> proxies; ///< Scratch.
     BroadphaseScratch broadphase;         ///< Scratch.
     std::vector<BodyPair> pairs;          ///< Derived: candidate pairs of this step, sorted.
+    std::vector<uint64_t> excluded_pairs; ///< Input: sorted keys (lo << 32 | hi) of pairs that never collide.
     std::vector<ContactPoint> points;     ///< Derived: this substep's points, grouped by pair.
     std::vector<uint32_t> pair_start;     ///< Derived: pairs.size() + 1 offsets into points.
     std::vector<ContactInfo> contacts;    ///< Derived: touching pairs of the last substep.

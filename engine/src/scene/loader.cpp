@@ -3,6 +3,7 @@
 // DOM, so every problem is reported with the JSON pointer of the value at fault; validate() on the
 // resulting Defs runs too, but only as a guard against the loader and the Defs drifting apart.
 #include "scene/body_reader.h"
+#include "scene/constraint_reader.h"
 #include "scene/json_reader.h"
 #include "scene/json_text.h"
 #include "supermodal/scene.h"
@@ -24,7 +25,7 @@ using scene_io::Reader;
 
 const std::vector<std::string_view> k_top_keys = {"settings", "materials", "bodies", "constraints"};
 const std::vector<std::string_view> k_settings_keys = {"dt", "substeps", "gravity", "duration",
-                                                       "max_steps_per_advance"};
+                                                       "max_steps_per_advance", "constraint_iterations"};
 const std::vector<std::string_view> k_material_keys = {
     "density", "young", "poisson", "friction", "restitution", "damping_ratio", "yield_stress"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
@@ -44,6 +45,8 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
     r.field_int(*settings, where, "substeps", scene_io::closed(1.0, k_max_substeps), world.substep_count);
     r.field_vec3(*settings, where, "gravity", scene_io::any_number(), world.gravity);
     r.field_number(*settings, where, "duration", scene_io::above(0.0), out_scene.duration);
+    r.field_int(*settings, where, "constraint_iterations", scene_io::closed(1.0, 100.0),
+                world.constraint_iterations);
     r.field_int(*settings, where, "max_steps_per_advance", scene_io::at_least(1.0),
                 world.max_steps_per_advance);
     if (!r.ok())
@@ -92,18 +95,6 @@ void read_materials(Reader& r, const Json& root, Scene& out_scene)
     }
 }
 
-void read_constraints(Reader& r, const Json& root)
-{
-    const Json* constraints = r.member(root, "constraints");
-    if (constraints == nullptr)
-        return;
-    if (!constraints->is_array())
-        return r.fail("/constraints", "expected an array, found " + scene_io::describe_value(*constraints));
-    // TODO(#7): penalty constraints. Refused rather than ignored: a chair without joints falls apart.
-    if (!constraints->empty())
-        r.fail("/constraints", "constraints are not supported yet (issue #7)");
-}
-
 struct FileCloser {
     void operator()(std::FILE* file) const { std::fclose(file); }
 };
@@ -142,7 +133,7 @@ Result<Scene> read_scene(const Json& root, const std::string& source)
     read_settings(reader, root, scene);
     read_materials(reader, root, scene);
     scene_io::read_bodies(reader, root, scene);
-    read_constraints(reader, root);
+    scene_io::read_constraints(reader, root, scene);
     if (!reader.ok())
         return reader.error();
     return scene;
@@ -197,6 +188,19 @@ Result<World> build_world(const Scene& scene)
             }
         if (create_body(world, def).is_null())
             return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};
+    }
+    for (size_t i = 0; i < scene.constraints.size(); ++i) {
+        const SceneConstraint& sc = scene.constraints[i];
+        const std::string where = scene_io::pointer_join("/constraints", i);
+        ConstraintDef def = sc.def;
+        def.a = find_body(world, sc.body_a);
+        def.b = sc.body_b.empty() ? Entity{} : find_body(world, sc.body_b);
+        if (def.a.is_null() || (!sc.body_b.empty() && def.b.is_null()))
+            return Error{scene.source, where, "names a body that is not in the scene"};
+        if (Status status = validate(def); !status)
+            return Error{scene.source, where, "invalid constraint: " + status.error().message()};
+        if (create_constraint(world, def).is_null())
+            return Error{scene.source, where, "the world refused this constraint"};
     }
     return world;
 }

@@ -131,8 +131,10 @@ Entity create_body(World& world, const BodyDef& def)
 
 void destroy_body(World& world, Entity body)
 {
-    if (World::Impl* w = live_mut(world, body))
+    if (World::Impl* w = live_mut(world, body)) {
+        drop_constraints_of(w->constraints, body); // a joint to nothing would pull towards a stale pose
         w->reg.destroy(body);
+    }
 }
 
 bool world_valid(const World& world, Entity body)

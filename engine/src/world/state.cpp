@@ -79,6 +79,23 @@ void unpack(World::Impl& w, Entity e, const double* in)
     f.torque = {in[23], in[24], in[25]};
 }
 
+void pack_constraint(const ConstraintState& c, std::vector<double>& out)
+{
+    const double values[k_values_per_constraint] = {
+        c.broken ? 1.0 : 0.0, c.impulse.x,     c.impulse.y,        c.impulse.z,       c.ang_impulse.x,
+        c.ang_impulse.y,      c.ang_impulse.z, c.limit_impulse[0], c.limit_impulse[1]};
+    out.insert(out.end(), values, values + k_values_per_constraint);
+}
+
+void unpack_constraint(const double* in, ConstraintState& c)
+{
+    c.broken = in[0] != 0.0;
+    c.impulse = {in[1], in[2], in[3]};
+    c.ang_impulse = {in[4], in[5], in[6]};
+    c.limit_impulse[0] = in[7];
+    c.limit_impulse[1] = in[8];
+}
+
 } // namespace
 
 uint64_t World::state_hash() const
@@ -106,6 +123,13 @@ uint64_t World::state_hash() const
         fnv.f64(a.spring.z);
         fnv.f64(a.twist);
     }
+    w.constraints.reg.pool().for_each_alive([&](Entity e) {
+        fnv.u64((uint64_t{e.index} << 32) | e.generation);
+        values.clear();
+        pack_constraint(w.constraints.reg.get<ConstraintState>(e), values);
+        for (double v : values)
+            fnv.f64(v);
+    });
     return fnv.h;
 }
 
@@ -127,6 +151,11 @@ Snapshot World::snapshot() const
         s.anchor_springs.push_back(a.spring);
         s.anchor_twists.push_back(a.twist);
     }
+    w.constraints.reg.pool().for_each_alive([&](Entity e) {
+        s.constraints.push_back(e);
+        pack_constraint(w.constraints.reg.get<ConstraintState>(e), s.constraint_values);
+    });
+    s.broken_constraint_count = w.constraints.broken_count;
     return s;
 }
 
@@ -143,6 +172,15 @@ Status World::restore(const Snapshot& s)
     });
     if (live != s.entities)
         return Error{"", "snapshot", "bodies were created or destroyed since this snapshot was taken"};
+    std::vector<Entity> live_constraints;
+    w.constraints.reg.pool().for_each_alive([&](Entity e) { live_constraints.push_back(e); });
+    if (live_constraints != s.constraints ||
+        s.constraint_values.size() != s.constraints.size() * k_values_per_constraint)
+        return Error{"", "snapshot", "constraints were created or destroyed since this snapshot was taken"};
+    for (size_t i = 0; i < live_constraints.size(); ++i)
+        unpack_constraint(s.constraint_values.data() + i * k_values_per_constraint,
+                          w.constraints.reg.get<ConstraintState>(live_constraints[i]));
+    w.constraints.broken_count = s.broken_constraint_count;
     for (size_t i = 0; i < live.size(); ++i)
         unpack(w, live[i], s.values.data() + i * k_values_per_body);
     w.contact.anchors.clear();

@@ -39,6 +39,8 @@ Status validate(const WorldDef& def)
         return Error{"", "gravity", "expected a finite vector"};
     if (def.max_steps_per_advance < 1)
         return Error{"", "max_steps_per_advance", "expected an integer >= 1"};
+    if (def.constraint_iterations < 1 || def.constraint_iterations > 100)
+        return Error{"", "constraint_iterations", "expected an integer in [1, 100]"};
     return {};
 }
 
@@ -91,7 +93,10 @@ void World::Impl::step()
     };
     store_previous_poses(reg);
     int substeps = def.substep_count;
-    run(Stage::Broadphase, [&] { substeps = update_pairs(def, reg, contact); });
+    run(Stage::Broadphase, [&] {
+        non_colliding_pairs(constraints, contact.excluded_pairs);
+        substeps = update_pairs(def, reg, contact);
+    });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -100,7 +105,11 @@ void World::Impl::step()
     for (int i = 0; i < ctx.substep_count; ++i) {
         run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, contact); });
-        run(Stage::PenaltyForces, [&] { apply_penalty_forces(def, ctx, reg, contact, warnings); });
+        run(Stage::PenaltyForces, [&] {
+            apply_penalty_forces(def, ctx, reg, contact, warnings);
+            constraints.iterations = def.constraint_iterations;
+            apply_constraint_forces(ctx, reg, constraints);
+        });
         run(Stage::ModalUpdate, [] {});
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
         run(Stage::UpdateSurfaces, [] {});

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include "constraints/constraint_world.h"
 #include "contact/contact_system.h"
 #include "supermodal/world.h"
 #include "world/components.h"
@@ -19,6 +20,7 @@ struct World::Impl {
     double accumulator = 0.0; ///< Real time not yet stepped [s].
     StepProfile profile{};
     StepWarnings warnings{};
+    ConstraintWorld constraints;                            ///< Penalty constraints (model + state).
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     bool locked = false;                                    ///< True inside step(): mutations assert.

@@ -1,0 +1,377 @@
+// SPDX-License-Identifier: MIT
+// Constraint springs for one substep. Each spring acts through the effective mass of its own error
+// direction(s) (the 3×3 point mass matrix K⁻¹ for a ball joint), so its frequency is what the user
+// asked for whatever the masses and lever arms. The spring–damper is integrated implicitly (backward
+// Euler on the constraint coordinate, Catto's "soft constraint" coefficients), so a stiff spring or
+// a light part between heavy ones cannot blow up; a few Gauss–Seidel passes over all constraints let
+// chains carry loads (a heavy part hanging below a light one) without the light part's mass limiting
+// the stiffness, as an explicit penalty spring would.
+#include "constraints/constraint_world.h"
+#include "dynamics/integrate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+struct Side {
+    const BodyModel* m = nullptr;
+    const Pose* p = nullptr;
+    Velocity* v = nullptr; ///< Null for the world.
+    Vec3 point{};          ///< Anchor [m], world.
+    Vec3 r{};              ///< Anchor − centre of mass [m], world.
+    Mat3 inv_inertia{};    ///< World frame [1/(kg·m²)]; zero unless dynamic.
+    double inv_mass = 0.0;
+};
+
+Mat3 world_inv_inertia(const BodyModel& m, const Pose& p)
+{
+    const Mat3 r = to_mat3(p.orientation);
+    return r * Mat3::diagonal(m.inv_inertia_body) * transpose(r);
+}
+
+Mat3 skew(const Vec3& a)
+{
+    Mat3 s;
+    s.m[0][1] = -a.z;
+    s.m[0][2] = a.y;
+    s.m[1][0] = a.z;
+    s.m[1][2] = -a.x;
+    s.m[2][0] = -a.y;
+    s.m[2][1] = a.x;
+    return s;
+}
+
+Mat3 add(const Mat3& a, const Mat3& b, double sb = 1.0)
+{
+    Mat3 r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r.m[i][j] = a.m[i][j] + sb * b.m[i][j];
+    return r;
+}
+
+// Inverse of a symmetric 3×3 by cofactors; false when (nearly) singular.
+bool invert(const Mat3& a, Mat3& out)
+{
+    const auto& m = a.m;
+    const Vec3 c0{m[1][1] * m[2][2] - m[1][2] * m[2][1], m[1][2] * m[2][0] - m[1][0] * m[2][2],
+                  m[1][0] * m[2][1] - m[1][1] * m[2][0]};
+    const double det = m[0][0] * c0.x + m[0][1] * c0.y + m[0][2] * c0.z;
+    double scale = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            scale = std::max(scale, std::abs(m[i][j]));
+    if (!(std::abs(det) > 1e-12 * scale * scale * scale) || !std::isfinite(det))
+        return false;
+    const double inv = 1.0 / det;
+    out.m[0][0] = c0.x * inv;
+    out.m[1][0] = c0.y * inv;
+    out.m[2][0] = c0.z * inv;
+    out.m[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv;
+    out.m[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv;
+    out.m[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv;
+    out.m[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv;
+    out.m[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv;
+    out.m[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv;
+    return true;
+}
+
+// Rotation vector of a unit quaternion, taking the short way round (|angle| ≤ π).
+Vec3 rotation_vector(Quat q)
+{
+    if (q.w < 0.0)
+        q = Quat{-q.w, -q.x, -q.y, -q.z};
+    const Vec3 v{q.x, q.y, q.z};
+    const double s = length(v);
+    if (s < 1e-12)
+        return 2.0 * v;
+    return (2.0 * std::atan2(s, q.w) / s) * v;
+}
+
+Vec3 anchor_velocity(const Side& s)
+{
+    return s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
+}
+Vec3 angular_velocity(const Side& s)
+{
+    return s.v == nullptr ? Vec3{} : s.v->angular;
+}
+
+// Adds an impulse J at the anchor (and an angular impulse L) to a body's velocities.
+void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
+{
+    if (s.v == nullptr || s.inv_mass == 0.0)
+        return;
+    s.v->linear += s.inv_mass * impulse;
+    s.v->angular += s.inv_inertia * (cross(s.r, impulse) + angular_impulse);
+}
+
+// K = (1/ma + 1/mb)·I − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]×: anchor velocity change per unit impulse.
+Mat3 point_mass_inverse(const Side& a, const Side& b)
+{
+    Mat3 k = Mat3::diagonal({1, 1, 1});
+    for (int i = 0; i < 3; ++i)
+        k.m[i][i] = a.inv_mass + b.inv_mass;
+    for (const Side* s : {&a, &b})
+        if (s->inv_mass > 0.0)
+            k = add(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
+    return k;
+}
+
+// Swing and twist of the relative rotation r (a's frame) about unit axis: r = swing·twist.
+void swing_twist(const Quat& r, const Vec3& axis, Vec3& out_swing, double& out_twist)
+{
+    const double proj = r.x * axis.x + r.y * axis.y + r.z * axis.z;
+    Quat twist{r.w, proj * axis.x, proj * axis.y, proj * axis.z};
+    const double n = norm(twist);
+    twist = n > 1e-12 ? Quat{twist.w / n, twist.x / n, twist.y / n, twist.z / n} : Quat{};
+    out_twist = dot(rotation_vector(twist), axis);
+    out_swing = rotation_vector(r * conjugate(twist));
+}
+
+Side make_side(Registry& bodies, Entity e, const Vec3& local)
+{
+    Side s;
+    if (e.is_null() || !bodies.valid(e)) {
+        s.point = local;
+        return s;
+    }
+    s.m = &bodies.get<BodyModel>(e);
+    s.p = &bodies.get<Pose>(e);
+    s.point = world_point(*s.m, *s.p, local);
+    s.r = s.point - s.p->position;
+    if (s.m->motion == MotionType::Dynamic) {
+        s.v = &bodies.get<Velocity>(e);
+        s.inv_mass = s.m->inv_mass;
+        s.inv_inertia = world_inv_inertia(*s.m, *s.p);
+    } else if (s.m->motion == MotionType::Kinematic) {
+        s.v = &bodies.get<Velocity>(e); // moves, but takes no impulse (inv_mass 0)
+    }
+    return s;
+}
+
+Quat orientation_of(const Side& s)
+{
+    return s.p == nullptr ? Quat{} : s.p->orientation;
+}
+
+// Backward-Euler spring–damper coefficients for natural frequency ω and damping ratio ζ over h:
+// the impulse is −m_eff·(mass_scale·(Ċ + bias_rate·C)) − impulse_scale·(impulse so far).
+struct Soft {
+    double bias_rate = 0.0;     ///< [1/s].
+    double mass_scale = 0.0;    ///< [-].
+    double impulse_scale = 0.0; ///< [-].
+};
+
+Soft make_soft(double omega, double zeta, double h)
+{
+    const double a1 = 2.0 * zeta + h * omega;
+    const double a2 = h * omega * a1;
+    const double a3 = 1.0 / (1.0 + a2);
+    return {omega / a1, a2 * a3, a3};
+}
+
+// One constraint prepared for this substep's velocity passes: positions stay fixed meanwhile.
+struct Row {
+    Entity id{};
+    Side a, b;
+    Soft soft{};
+    Vec3 gap{};    ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).
+    Vec3 normal{}; ///< Distance: unit a − b.
+    Mat3 mass{};   ///< Point/weld: K⁻¹ [kg]; distance: m_eff on the diagonal.
+    bool has_mass = false;
+    Vec3 impulse{}; ///< Accumulated linear impulse on a this substep [N·s].
+    // Angular parts: weld (3-D) or up to two one-sided limit rows (axis, excess).
+    Vec3 theta{};    ///< Weld error rotation vector [rad], world.
+    Mat3 ang_mass{}; ///< Weld: (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
+    bool has_ang_mass = false;
+    Vec3 ang_impulse{}; ///< Accumulated angular impulse on b [N·m·s].
+    // Limit slots: 0 swing, 1 twist.
+    bool limit_active[2]{};
+    Vec3 limit_axis[2]{};      ///< Unit world axes of violated limits.
+    double limit_excess[2]{};  ///< [rad], > 0 when violated.
+    double limit_mass[2]{};    ///< [kg·m²].
+    double limit_impulse[2]{}; ///< Accumulated, ≥ 0 (pushes back only) [N·m·s].
+};
+
+// Applies the row's accumulated impulses times `sign` (−1 takes them back).
+void apply_row(Row& r, double sign)
+{
+    push(r.a, sign * r.impulse, sign * -1.0 * r.ang_impulse);
+    push(r.b, sign * -1.0 * r.impulse, sign * r.ang_impulse);
+    for (int i = 0; i < 2; ++i) {
+        push(r.a, Vec3{}, sign * r.limit_impulse[i] * r.limit_axis[i]);
+        push(r.b, Vec3{}, -sign * r.limit_impulse[i] * r.limit_axis[i]);
+    }
+}
+
+void solve_linear(Row& r, const ConstraintDef& d)
+{
+    const Vec3 rate = anchor_velocity(r.a) - anchor_velocity(r.b);
+    Vec3 dj{};
+    if (d.type == ConstraintType::Distance) {
+        const double cn = dot(r.normal, rate) + r.soft.bias_rate * dot(r.normal, r.gap);
+        dj = (-r.mass.m[0][0] * r.soft.mass_scale * cn - r.soft.impulse_scale * dot(r.normal, r.impulse)) *
+             r.normal;
+    } else {
+        dj = -1.0 * (r.soft.mass_scale * (r.mass * (rate + r.soft.bias_rate * r.gap))) -
+             r.soft.impulse_scale * r.impulse;
+    }
+    r.impulse += dj;
+    push(r.a, dj, Vec3{});
+    push(r.b, -1.0 * dj, Vec3{});
+}
+
+void solve_angular(Row& r)
+{
+    if (r.has_ang_mass) {
+        const Vec3 rate = angular_velocity(r.b) - angular_velocity(r.a);
+        const Vec3 dl = -1.0 * (r.soft.mass_scale * (r.ang_mass * (rate + r.soft.bias_rate * r.theta))) -
+                        r.soft.impulse_scale * r.ang_impulse;
+        r.ang_impulse += dl;
+        push(r.a, Vec3{}, -1.0 * dl);
+        push(r.b, Vec3{}, dl);
+    }
+    for (int i = 0; i < 2; ++i) {
+        if (!r.limit_active[i])
+            continue;
+        const Vec3& axis = r.limit_axis[i];
+        const double rate = dot(angular_velocity(r.b) - angular_velocity(r.a), axis);
+        // Impulse on b against the axis; accumulated ≥ 0 so the limit pushes back but never pulls.
+        const double want =
+            r.limit_mass[i] * r.soft.mass_scale * (rate + r.soft.bias_rate * r.limit_excess[i]) -
+            r.soft.impulse_scale * r.limit_impulse[i];
+        const double total = std::max(0.0, r.limit_impulse[i] + want);
+        const double dl = total - r.limit_impulse[i];
+        r.limit_impulse[i] = total;
+        push(r.a, Vec3{}, dl * axis);
+        push(r.b, Vec3{}, -dl * axis);
+    }
+}
+
+// The last substep's impulses, applied first: over substeps they converge to the load a spring carries,
+// so chains hold without many passes (Box2D's warm starting).
+void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
+{
+    if (r.has_mass)
+        r.impulse = d.type == ConstraintType::Distance ? dot(st.impulse, r.normal) * r.normal : st.impulse;
+    if (r.has_ang_mass)
+        r.ang_impulse = st.ang_impulse;
+    for (int i = 0; i < 2; ++i)
+        r.limit_impulse[i] = r.limit_active[i] ? st.limit_impulse[i] : 0.0;
+    apply_row(r, 1.0);
+}
+
+bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
+{
+    const ConstraintDef& d = c.def;
+    r.a = make_side(bodies, d.a, c.local_a);
+    r.b = make_side(bodies, d.b, c.local_b);
+    if (r.a.m == nullptr)
+        return false;
+    r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
+    const Vec3 gap = r.a.point - r.b.point;
+    if (d.type == ConstraintType::Distance) {
+        const double len = length(gap);
+        st.error.linear = std::abs(len - c.rest_length);
+        if (len > 1e-12) {
+            r.normal = gap / len;
+            r.gap = (len - c.rest_length) * r.normal;
+            const double k_inv = dot(r.normal, point_mass_inverse(r.a, r.b) * r.normal);
+            r.has_mass = k_inv > 0.0;
+            r.mass.m[0][0] = r.has_mass ? 1.0 / k_inv : 0.0;
+        }
+    } else {
+        st.error.linear = length(gap);
+        r.gap = gap;
+        r.has_mass = invert(point_mass_inverse(r.a, r.b), r.mass);
+    }
+    const Quat qa = orientation_of(r.a), qb = orientation_of(r.b);
+    if (d.type == ConstraintType::Weld) {
+        // Orientation error of b against where the weld holds it, as a world rotation vector.
+        r.theta = rotation_vector(qb * conjugate(qa * c.rest_relative));
+        st.error.angular = length(r.theta);
+        r.has_ang_mass = invert(add(r.a.inv_inertia, r.b.inv_inertia), r.ang_mass);
+    } else if (d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0)) {
+        const Quat rel = conjugate(qa) * qb * conjugate(c.rest_relative); // a's frame
+        Vec3 swing{};
+        double twist = 0.0;
+        swing_twist(rel, c.axis_a, swing, twist);
+        auto add_limit = [&](int slot, const Vec3& axis_w, double excess) {
+            if (excess <= 0.0)
+                return;
+            st.error.angular = std::max(st.error.angular, excess);
+            const double k_inv =
+                dot(axis_w, r.a.inv_inertia * axis_w) + dot(axis_w, r.b.inv_inertia * axis_w);
+            if (!(k_inv > 0.0))
+                return;
+            r.limit_active[slot] = true;
+            r.limit_axis[slot] = axis_w;
+            r.limit_excess[slot] = excess;
+            r.limit_mass[slot] = 1.0 / k_inv;
+        };
+        const double swing_angle = length(swing);
+        if (d.swing_limit >= 0.0 && swing_angle > 1e-12)
+            add_limit(0, rotate(qa, swing / swing_angle), swing_angle - d.swing_limit);
+        if (d.twist_limit >= 0.0)
+            add_limit(1, rotate(qa, twist >= 0.0 ? c.axis_a : -1.0 * c.axis_a),
+                      std::abs(twist) - d.twist_limit);
+    }
+    warm_start(r, st, d);
+    return true;
+}
+
+} // namespace
+
+void apply_constraint_forces(const StepContext& ctx, Registry& bodies, ConstraintWorld& cw)
+{
+    cw.max_error = 0.0;
+    const double h = ctx.h;
+    // Index order, so the result does not depend on the store's creation/destruction history.
+    std::vector<Entity> order = cw.reg.store<ConstraintModel>().entities();
+    std::sort(order.begin(), order.end(), [](Entity x, Entity y) { return x.index < y.index; });
+    std::vector<Row> rows;
+    rows.reserve(order.size());
+    for (Entity ce : order) {
+        const ConstraintModel& c = cw.reg.get<ConstraintModel>(ce);
+        ConstraintState& st = cw.reg.get<ConstraintState>(ce);
+        st.force_on_a = Vec3{};
+        st.error = ConstraintError{};
+        if (st.broken)
+            continue;
+        Row r;
+        r.id = ce;
+        if (prepare(r, c, st, bodies, h))
+            rows.push_back(r);
+        cw.max_error = std::max(cw.max_error, st.error.linear);
+    }
+    for (int pass = 0; pass < cw.iterations; ++pass)
+        for (Row& r : rows) {
+            const ConstraintDef& d = cw.reg.get<ConstraintModel>(r.id).def;
+            if (r.has_mass)
+                solve_linear(r, d);
+            solve_angular(r);
+        }
+    for (Row& r : rows) {
+        ConstraintState& st = cw.reg.get<ConstraintState>(r.id);
+        // A spring that would need more than its break force snaps instead of pulling: its impulses
+        // are taken back, so the parts fly apart with the momentum they had.
+        if (length(r.impulse) > h * cw.reg.get<ConstraintModel>(r.id).def.break_force) {
+            apply_row(r, -1.0);
+            st = ConstraintState{.broken = true, .error = st.error};
+            ++cw.broken_count;
+            continue;
+        }
+        st.force_on_a = r.impulse / h;
+        st.impulse = r.impulse;
+        st.ang_impulse = r.ang_impulse;
+        st.limit_impulse[0] = r.limit_impulse[0];
+        st.limit_impulse[1] = r.limit_impulse[1];
+    }
+}
+
+} // namespace supermodal
