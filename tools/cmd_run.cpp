@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `supermodal run`: load a scene, step it, write a JSON summary (and optionally a CSV trace).
 #include "cli_common.h"
+#include "constraint_summary.h"
+#include "supermodal/constraint.h"
 
 #include <algorithm>
 #include <chrono>
@@ -143,8 +145,10 @@ int run_command(const RunOptions& opt)
     step_ms.reserve(static_cast<size_t>(std::min(steps, 10'000'000LL)));
     std::array<double, static_cast<size_t>(Stage::Count)> stage_total{};
     Progress progress(steps, !opt.quiet);
+    double peak_constraint_error = 0.0;
     for (long long i = 1; i <= steps; ++i) {
         world.step();
+        peak_constraint_error = std::max(peak_constraint_error, world_max_constraint_error(world));
         step_ms.push_back(world.profile().total_ms);
         for (size_t s = 0; s < stage_total.size(); ++s)
             stage_total[s] += world.profile().stage_ms[s];
@@ -188,6 +192,7 @@ int run_command(const RunOptions& opt)
         {"warnings",
          {{"non_finite_bodies", world.warnings().non_finite_bodies},
           {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks}}},
+        {"constraints", constraint_summary(world, peak_constraint_error)},
         {"bodies", bodies}};
 
     const std::string text = summary.dump(2) + "\n";

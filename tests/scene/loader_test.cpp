@@ -491,7 +491,7 @@ TEST(SceneLoaderBuildWorld, RefusesWhatTheLoaderWouldRefuse)
 {
     sm::Scene scene;
     scene.bodies.push_back(
-        {.def = sm::default_body_def(), .material = "", .dynamics = sm::DynamicsType::Modal});
+        {.def = sm::default_body_def(), .material = "", .dynamics = sm::DynamicsType::Modal, .parent = ""});
     sm::Result<sm::World> modal = sm::build_world(scene);
     ASSERT_FALSE(modal);
     EXPECT_EQ(modal.error().where, "/bodies/0/dynamics/type");

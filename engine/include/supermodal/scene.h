@@ -36,6 +36,8 @@ struct SceneBody {
     BodyDef def;
     std::string material; ///< Material name, or empty for the default material.
     DynamicsType dynamics = DynamicsType::Rigid;
+    std::string parent;   ///< Parent body's name, or empty. Then def's pose and velocities are in the
+                          ///< parent's frame (relative to its shape origin), resolved by build_world().
 };
 
 /// One constraint of a scene: its def with the bodies named (b empty = the world).

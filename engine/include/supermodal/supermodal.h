@@ -8,6 +8,7 @@
 #include "supermodal/contact.h"
 #include "supermodal/entity.h"
 #include "supermodal/geometry.h"
+#include "supermodal/hierarchy.h"
 #include "supermodal/math.h"
 #include "supermodal/modal.h"
 #include "supermodal/result.h"

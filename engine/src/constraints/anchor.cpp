@@ -87,6 +87,11 @@ void drop_constraints_of(ConstraintWorld& cw, Entity body)
     });
     for (Entity e : doomed)
         cw.reg.destroy(e);
+    for (Entity& p : cw.parent)
+        if (p == body)
+            p = Entity{};
+    if (body.index < cw.parent.size())
+        cw.parent[body.index] = Entity{};
 }
 
 void non_colliding_pairs(const ConstraintWorld& cw, std::vector<uint64_t>& out_keys)
@@ -100,6 +105,11 @@ void non_colliding_pairs(const ConstraintWorld& cw, std::vector<uint64_t>& out_k
         const uint32_t lo = std::min(c.def.a.index, c.def.b.index),
                        hi = std::max(c.def.a.index, c.def.b.index);
         out_keys.push_back((uint64_t{lo} << 32) | hi);
+    }
+    for (uint32_t child = 0; child < cw.parent.size(); ++child) {
+        const Entity p = cw.parent[child];
+        if (!p.is_null())
+            out_keys.push_back((uint64_t{std::min(child, p.index)} << 32) | std::max(child, p.index));
     }
     std::sort(out_keys.begin(), out_keys.end());
     out_keys.erase(std::unique(out_keys.begin(), out_keys.end()), out_keys.end());

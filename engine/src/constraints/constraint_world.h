@@ -43,6 +43,7 @@ using ConstraintRegistry = BasicRegistry<ConstraintModel, ConstraintState>;
 struct ConstraintWorld {
     ConstraintRegistry reg;
     uint64_t broken_count = 0; ///< Constraints broken since creation.
+    std::vector<Entity> parent;    ///< Model: parent by child entity index (null = none); see hierarchy.h.
     int iterations = 4;        ///< Gauss–Seidel passes per substep (WorldDef::constraint_iterations).
     double max_error = 0.0;    ///< Derived: largest linear error after the last substep [m].
 };
@@ -62,7 +63,7 @@ struct ConstraintWorld {
 [[nodiscard]] Vec3 world_point(const BodyModel& m, const Pose& p, const Vec3& local);
 /// Re-resolves surface anchors on `body` after its shape changed.
 void refresh_anchors(ConstraintWorld& cw, const Registry& bodies, Entity body);
-/// Destroys the constraints that hold `body` (called when the body is destroyed).
+/// Destroys the constraints that hold `body` and its parent links (called when the body is destroyed).
 void drop_constraints_of(ConstraintWorld& cw, Entity body);
 /// Sorted keys (lower index << 32 | higher index) of body pairs that must not collide.
 void non_colliding_pairs(const ConstraintWorld& cw, std::vector<uint64_t>& out_keys);

@@ -18,7 +18,8 @@ namespace
 
 const std::vector<std::string_view> k_body_keys = {
     "name",        "shape",    "material",         "density", "mass",          "position",
-    "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics"};
+    "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics",
+    "parent"};
 // In ShapeType order, so a choice's index is its enumerator; each type's keys at the same index.
 const std::vector<std::string_view> k_shape_types = {"superquadric", "plane", "hyperquadric"};
 const std::vector<std::vector<std::string_view>> k_shape_keys = {
@@ -287,6 +288,22 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, SceneB
                    " are not implemented yet (issue #6); use \"rigid\"");
 }
 
+// A parent is an earlier body of the scene: the child's pose is read in the parent's frame.
+void read_parent(Reader& r, const Json& value, const std::string& where, const Scene& scene, SceneBody& out_body)
+{
+    r.read_string(value, where, out_body.parent);
+    if (!r.ok())
+        return;
+    std::vector<std::string_view> names;
+    for (const SceneBody& b : scene.bodies) {
+        if (b.def.name == out_body.parent)
+            return;
+        names.push_back(b.def.name);
+    }
+    r.fail(where, "no earlier body named " + quote_text(out_body.parent) + " (a parent is listed before its children)" +
+                      did_you_mean(out_body.parent, names));
+}
+
 void read_body(Reader& r, const Json& body, const std::string& where, const Scene& scene,
                const MaterialIndex& materials, SceneBody& out_body)
 {
@@ -317,6 +334,8 @@ void read_body(Reader& r, const Json& body, const std::string& where, const Scen
     r.field_vec3(body, where, "velocity", any_number(), def.linear_velocity);
     r.field_vec3(body, where, "angular_velocity", any_number(), def.angular_velocity);
     r.field_number(body, where, "gravity_scale", any_number(), def.gravity_scale);
+    if (const Json* parent = r.member(body, "parent"))
+        read_parent(r, *parent, pointer_join(where, "parent"), scene, out_body);
     read_dynamics(r, body, where, out_body);
 }
 

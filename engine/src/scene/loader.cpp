@@ -6,12 +6,15 @@
 #include "scene/constraint_reader.h"
 #include "scene/json_reader.h"
 #include "scene/json_text.h"
+#include "supermodal/hierarchy.h"
 #include "supermodal/scene.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -22,8 +25,11 @@ namespace
 
 using scene_io::Json;
 using scene_io::Reader;
+using scene_io::pointer_join;
 
-const std::vector<std::string_view> k_top_keys = {"settings", "materials", "bodies", "constraints"};
+const std::vector<std::string_view> k_top_keys = {"settings", "materials", "include", "bodies", "constraints"};
+const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
+constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {"dt", "substeps", "gravity", "duration",
                                                        "max_steps_per_advance", "constraint_iterations"};
 const std::vector<std::string_view> k_material_keys = {
@@ -121,7 +127,115 @@ Result<std::string> read_file(const std::string& path)
     return text;
 }
 
-Result<Scene> read_scene(const Json& root, const std::string& source)
+// Where includes are looked up and which files are open above this one (to catch cycles).
+struct IncludeContext {
+    std::filesystem::path base_dir;
+    std::vector<std::string> open_files; ///< Canonical paths, outermost first.
+};
+
+Result<Scene> read_scene(const Json& root, const std::string& source, IncludeContext& ctx);
+
+bool same_material(const MaterialDef& a, const MaterialDef& b)
+{
+    return a.density == b.density && a.young == b.young && a.poisson == b.poisson && a.friction == b.friction &&
+           a.restitution == b.restitution && a.damping_ratio == b.damping_ratio && a.yield_stress == b.yield_stress;
+}
+
+// Appends an included scene: names get the prefix, root bodies and world anchors the transform.
+void merge_included(Reader& r, const std::string& where, Scene&& part, const std::string& prefix, const Vec3& t,
+                    const Quat& q, Scene& out_scene)
+{
+    for (MaterialDef& m : part.materials) {
+        const auto same_name = [&](const MaterialDef& o) { return o.name == m.name; };
+        const auto it = std::find_if(out_scene.materials.begin(), out_scene.materials.end(), same_name);
+        if (it == out_scene.materials.end())
+            out_scene.materials.push_back(m);
+        else if (!same_material(*it, m))
+            return r.fail(pointer_join(where, "file"), "material " + scene_io::quote_text(m.name) + " in " +
+                                                           part.source + " differs from the one already defined");
+    }
+    for (SceneBody& b : part.bodies) {
+        b.def.name = prefix + b.def.name;
+        for (const SceneBody& o : out_scene.bodies)
+            if (o.def.name == b.def.name)
+                return r.fail(pointer_join(where, "prefix"), "body name " + scene_io::quote_text(b.def.name) +
+                                                                 " from " + part.source +
+                                                                 " is already taken; choose another prefix");
+        if (b.parent.empty()) {
+            b.def.position = t + rotate(q, b.def.position);
+            b.def.orientation = normalized(q * normalized(b.def.orientation));
+            b.def.linear_velocity = rotate(q, b.def.linear_velocity);
+            b.def.angular_velocity = rotate(q, b.def.angular_velocity);
+        } else {
+            b.parent = prefix + b.parent;
+        }
+        out_scene.bodies.push_back(std::move(b));
+    }
+    for (SceneConstraint& c : part.constraints) {
+        c.def.name = c.def.name.empty() ? c.def.name : prefix + c.def.name;
+        c.body_a = prefix + c.body_a;
+        if (c.body_b.empty())
+            c.def.anchor_b.point = t + rotate(q, c.def.anchor_b.point);
+        else
+            c.body_b = prefix + c.body_b;
+        out_scene.constraints.push_back(std::move(c));
+    }
+}
+
+void read_include(Reader& r, const Json& item, const std::string& where, IncludeContext& ctx, Scene& out_scene)
+{
+    if (!r.check_object(item, where, k_include_keys))
+        return;
+    std::string file, prefix;
+    if (const Json* f = r.require(item, where, "file"))
+        r.read_string(*f, pointer_join(where, "file"), file);
+    if (const Json* p = r.member(item, "prefix"))
+        r.read_string(*p, pointer_join(where, "prefix"), prefix);
+    Vec3 t{};
+    r.field_vec3(item, where, "position", scene_io::any_number(), t);
+    double qv[4] = {1, 0, 0, 0};
+    if (const Json* o = r.member(item, "orientation"))
+        r.read_numbers(*o, pointer_join(where, "orientation"), scene_io::any_number(), qv);
+    const Quat q{qv[0], qv[1], qv[2], qv[3]};
+    if (r.ok() && !(norm(q) > 0.0))
+        return r.fail(pointer_join(where, "orientation"), "expected a non-zero quaternion [w, x, y, z]");
+    if (!r.ok())
+        return;
+    const std::filesystem::path path = ctx.base_dir / file;
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+    const std::string key = ec ? path.string() : canonical.string();
+    if (std::find(ctx.open_files.begin(), ctx.open_files.end(), key) != ctx.open_files.end())
+        return r.fail(pointer_join(where, "file"), "include cycle: " + path.string() + " includes itself");
+    if (ctx.open_files.size() >= k_max_include_depth)
+        return r.fail(pointer_join(where, "file"), "includes nest deeper than " + std::to_string(k_max_include_depth));
+    Result<std::string> text = read_file(path.string());
+    if (!text)
+        return r.fail(pointer_join(where, "file"), text.error().what + " (" + path.string() + ")");
+    Result<Json> json = scene_io::parse_json_text(*text, path.string());
+    if (!json)
+        return r.fail(pointer_join(where, "file"), "in " + json.error().message());
+    IncludeContext inner{path.parent_path(), ctx.open_files};
+    inner.open_files.push_back(key);
+    Result<Scene> part = read_scene(*json, path.string(), inner);
+    if (!part)
+        return r.fail(pointer_join(where, "file"), "in " + part.error().message());
+    merge_included(r, where, std::move(*part), prefix, t, normalized(q), out_scene);
+}
+
+// Included files are scenes of their own; only their materials, bodies and constraints are used.
+void read_includes(Reader& r, const Json& root, IncludeContext& ctx, Scene& out_scene)
+{
+    const Json* includes = r.member(root, "include");
+    if (includes == nullptr)
+        return;
+    if (!includes->is_array())
+        return r.fail("/include", "expected an array, found " + scene_io::describe_value(*includes));
+    for (size_t i = 0; i < includes->size() && r.ok(); ++i)
+        read_include(r, (*includes)[i], pointer_join("/include", i), ctx, out_scene);
+}
+
+Result<Scene> read_scene(const Json& root, const std::string& source, IncludeContext& ctx)
 {
     if (!root.is_object())
         return Error{source, "",
@@ -132,11 +246,26 @@ Result<Scene> read_scene(const Json& root, const std::string& source)
     reader.check_object(root, "", k_top_keys);
     read_settings(reader, root, scene);
     read_materials(reader, root, scene);
+    read_includes(reader, root, ctx, scene);
     scene_io::read_bodies(reader, root, scene);
     scene_io::read_constraints(reader, root, scene);
     if (!reader.ok())
         return reader.error();
     return scene;
+}
+
+Result<Scene> parse_scene_in(std::string_view json_text, const std::string& source, IncludeContext ctx)
+{
+    Result<Json> json = scene_io::parse_json_text(json_text, source);
+    if (!json)
+        return json.error();
+    // The readers check every type before converting, so nothing here should throw; this keeps the
+    // promise that no exception leaves the public API even if that ever stops being true.
+    try {
+        return read_scene(*json, source, ctx);
+    } catch (const std::exception& e) {
+        return Error{source, "", std::string("internal error while reading the scene: ") + e.what()};
+    }
 }
 
 } // namespace
@@ -146,22 +275,38 @@ Result<Scene> load_scene(const std::string& path)
     Result<std::string> text = read_file(path);
     if (!text)
         return text.error();
-    return parse_scene(*text, path);
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+    IncludeContext ctx{std::filesystem::path(path).parent_path(), {ec ? path : canonical.string()}};
+    return parse_scene_in(*text, path, std::move(ctx));
 }
 
 Result<Scene> parse_scene(std::string_view json_text, const std::string& source)
 {
-    Result<Json> json = scene_io::parse_json_text(json_text, source);
-    if (!json)
-        return json.error();
-    // The readers check every type before converting, so nothing here should throw; this keeps the
-    // promise that no exception leaves the public API even if that ever stops being true.
-    try {
-        return read_scene(*json, source);
-    } catch (const std::exception& e) {
-        return Error{source, "", std::string("internal error while reading the scene: ") + e.what()};
-    }
+    std::error_code ec;
+    std::filesystem::path cwd = std::filesystem::current_path(ec);
+    return parse_scene_in(json_text, source, IncludeContext{ec ? std::filesystem::path(".") : cwd, {}});
 }
+
+namespace
+{
+
+// A child's pose and velocities are given in its parent's frame: make them world quantities. The
+// child moves with the parent's velocity field (v + ω × r) plus its own, like a rigidly attached part.
+void place_in_parent(const World& world, Entity parent, BodyDef& def)
+{
+    const Vec3 origin = body_position(world, parent);
+    const Quat q = body_orientation(world, parent);
+    const Vec3 position = origin + rotate(q, def.position);
+    const Vec3 w = body_angular_velocity(world, parent);
+    const Vec3 v = body_linear_velocity(world, parent) + cross(w, position - body_center_of_mass(world, parent));
+    def.position = position;
+    def.orientation = normalized(q * normalized(def.orientation));
+    def.linear_velocity = v + rotate(q, def.linear_velocity);
+    def.angular_velocity = w + rotate(q, def.angular_velocity);
+}
+
+} // namespace
 
 Result<World> build_world(const Scene& scene)
 {
@@ -180,14 +325,25 @@ Result<World> build_world(const Scene& scene)
     World world(scene.world);
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         BodyDef def = scene.bodies[i].def;
+        Entity parent{};
+        if (!scene.bodies[i].parent.empty()) {
+            parent = find_body(world, scene.bodies[i].parent);
+            if (parent.is_null())
+                return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/parent",
+                             "no earlier body named " + scene_io::quote_text(scene.bodies[i].parent)};
+            place_in_parent(world, parent, def);
+        }
         // Contact properties come from the body's material (density was resolved while reading).
         for (const MaterialDef& m : scene.materials)
             if (m.name == scene.bodies[i].material) {
                 def.friction = m.friction;
                 def.restitution = m.restitution;
             }
-        if (create_body(world, def).is_null())
+        const Entity body = create_body(world, def);
+        if (body.is_null())
             return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};
+        if (!parent.is_null())
+            (void)set_body_parent(world, body, parent); // parent is earlier, so no cycle
     }
     for (size_t i = 0; i < scene.constraints.size(); ++i) {
         const SceneConstraint& sc = scene.constraints[i];

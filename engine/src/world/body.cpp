@@ -48,6 +48,27 @@ World::Impl* live_mut(World& world, Entity e)
     return ok && !w.locked ? &w : nullptr;
 }
 
+bool finite_def(const BodyDef& d)
+{
+    return is_finite(d.position) && is_finite(d.orientation) && is_finite(d.linear_velocity) &&
+           is_finite(d.angular_velocity) && std::isfinite(d.gravity_scale);
+}
+
+} // namespace
+
+void set_mass_model(BodyModel& model, const ShapeDef& shape, double density)
+{
+    model.mass = compute_mass_properties(shape, density);
+    model.inv_mass = 0.0;
+    model.inertia_body = model.inv_inertia_body = Vec3{};
+    if (model.motion == MotionType::Dynamic) {
+        model.inv_mass = 1.0 / model.mass.mass;
+        model.inertia_body = model.mass.inertia_diagonal;
+        const Vec3& i = model.inertia_body;
+        model.inv_inertia_body = {1.0 / i.x, 1.0 / i.y, 1.0 / i.z};
+    }
+}
+
 // Colliders are built once per distinct shape and shared: a pile of identical bodies holds one sample set.
 std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com)
 {
@@ -59,14 +80,6 @@ std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& sha
     w.colliders.push_back(c);
     return c;
 }
-
-bool finite_def(const BodyDef& d)
-{
-    return is_finite(d.position) && is_finite(d.orientation) && is_finite(d.linear_velocity) &&
-           is_finite(d.angular_velocity) && std::isfinite(d.gravity_scale);
-}
-
-} // namespace
 
 BodyDef default_body_def()
 {
@@ -106,13 +119,7 @@ Entity create_body(World& world, const BodyDef& def)
     model.motion = def.motion;
     model.shape = def.shape;
     model.gravity_scale = def.gravity_scale;
-    model.mass = compute_mass_properties(def.shape, def.density);
-    if (def.motion == MotionType::Dynamic) {
-        model.inv_mass = 1.0 / model.mass.mass;
-        model.inertia_body = model.mass.inertia_diagonal;
-        const Vec3& i = model.inertia_body;
-        model.inv_inertia_body = {1.0 / i.x, 1.0 / i.y, 1.0 / i.z};
-    }
+    set_mass_model(model, def.shape, def.density);
     model.friction = def.friction;
     model.restitution = def.restitution;
     model.collider = collider_for(w, def.shape, model.mass.center_of_mass);

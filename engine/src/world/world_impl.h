@@ -28,4 +28,9 @@ struct World::Impl {
     void step();
 };
 
+/// Mass, inverse mass and inertia of a body from its shape and density (zero inverses unless dynamic).
+void set_mass_model(BodyModel& model, const ShapeDef& shape, double density);
+/// The shared contact model for a shape whose centre of mass is `com` (shape frame) [m].
+[[nodiscard]] std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com);
+
 } // namespace supermodal
