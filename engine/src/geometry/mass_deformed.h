@@ -12,10 +12,10 @@ namespace supermodal
 /// Quadrature mass properties with the full inertia tensor.
 struct QuadratureMass {
     /// inertia_diagonal holds the principal moments about the centre of mass, each in the slot of the
-    /// shape axis its principal axis is closest to (the axes are in principal_axes).
+    /// shape axis its principal axis is closest to; properties.principal_axes is principal_axes.
     MassProperties properties;
     Mat3 inertia_tensor{}; ///< About the centre of mass, shape axes [kg·m²].
-    Mat3 principal_axes{}; ///< Column i: unit principal axis of inertia_diagonal[i], shape frame.
+    Mat3 principal_axes{}; ///< Column i: unit principal axis of inertia_diagonal[i], shape frame; det +1.
 };
 
 /// Mass properties of a superquadric (deformed or not) or hyperquadric of density ρ [kg/m³] by
