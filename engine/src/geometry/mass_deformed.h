@@ -22,7 +22,7 @@ struct QuadratureMass {
 /// quadrature; zeros for planes and for empty or unbounded hyperquadrics. The node count grows with
 /// `order` (≥ 1): superquadrics use (8·order + 1)² tanh-sinh nodes over each half quadrant of the
 /// cross-section and 8 Gauss nodes along z; hyperquadrics use (12·order)² ray directions per cube face.
-/// Accuracy and cost against order: docs/geometry_deform.md.
+/// Accuracy and cost against order: docs/geometry.md.
 [[nodiscard]] QuadratureMass quadrature_mass(const ShapeDef& def, double density, int order);
 
 /// The default order: ≤ 1e-10 relative for superquadrics with ε in [0.01, 4], ≤ 1e-10 for smooth
