@@ -10,7 +10,7 @@
 // and −0 included, so lookups never depend on floating-point comparison). The cache is guarded by a
 // mutex (safe from several threads and worlds), and what it returns is bit-identical to recomputing,
 // so whether a shape was cached never changes a result: determinism does not depend on cache state.
-// An entry holds the ~2·10³ vertices of a 64-segment mesh (~50 KB); at most k_bounds_cache_capacity
+// An entry holds the ~3·10³ vertices of a 64-segment mesh (~70 KB); at most k_bounds_cache_capacity
 // entries are kept.
 #include "geometry/bounds_internal.h"
 

@@ -18,7 +18,7 @@ namespace supermodal
 /// Empties the cache (vertex sets already handed out stay valid).
 void clear_bounds_cache();
 
-/// The cache holds at most this many shapes (~50 KB each); adding one more evicts one.
+/// The cache holds at most this many shapes (~70 KB each, ~18 MB in all); adding one more evicts one.
 inline constexpr size_t k_bounds_cache_capacity = 256;
 
 } // namespace supermodal
