@@ -66,6 +66,14 @@ TEST(Mpr, SeparatedBodiesDoNotHit)
     EXPECT_TRUE(sm::mpr_penetration(view(a, {0, 0.1999, 0}), view(a, {})).hit);
 }
 
+TEST(Mpr, NonFinitePoseHasNoContact)
+{
+    const sm::Collider a = collider({0.1, 0.1, 0.1}, 0.3);
+    const double nan = std::nan("");
+    EXPECT_FALSE(sm::mpr_penetration(view(a, {nan, 0, 0}), view(a, {})).hit);
+    EXPECT_FALSE(sm::mpr_penetration(view(a, {}), view(a, {0, 0.1, 0}, {nan, 0, 0, 1})).hit);
+}
+
 TEST(Mpr, BodySupportIsTheShapeSupportMovedToTheBody)
 {
     const sm::Collider a = collider({0.1, 0.2, 0.3}, 0.5);

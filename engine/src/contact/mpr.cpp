@@ -56,6 +56,10 @@ Vec3 body_shape_centre(const BodyView& body)
 
 MprResult mpr_penetration(const BodyView& a, const BodyView& b)
 {
+    // libccd's portal loops compare with NaN forever; a non-finite pose has no contact.
+    if (!is_finite(a.position) || !is_finite(a.orientation) || !is_finite(b.position) ||
+        !is_finite(b.orientation))
+        return {};
     ccd_t ccd;
     CCD_INIT(&ccd);
     ccd.support1 = support_cb;
