@@ -74,6 +74,12 @@ struct Snapshot {
     std::vector<uint64_t> anchor_keys; ///< Friction anchors: pair keys, sorted.
     std::vector<Vec3> anchor_springs;  ///< Friction anchors: tangential spring extensions [m].
     std::vector<double> anchor_twists; ///< Friction anchors: torsional spring angles [rad].
+
+    // Contact manifolds of support-map pairs, sorted by pair key; per point, the point on A then the
+    // point on B, each in its own body frame [m].
+    std::vector<uint64_t> manifold_keys;
+    std::vector<int> manifold_counts;
+    std::vector<Vec3> manifold_points;
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.
