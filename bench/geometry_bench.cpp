@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Cost of the superquadric point queries (ns per call) across ε, with the accuracy each one reaches:
 // the inside-outside function, the contact measure, the implicit normal, the support map and the
-// closest-point projection (with its mean error bound).
+// closest-point projection (with its mean error bound), and the world box (cached vertex sets of
+// deformed shapes and hyperquadrics against recomputing them).
+#include "geometry/bounds_internal.h"
 #include "supermodal/geometry.h"
 #include "supermodal/shape.h"
 
@@ -124,3 +126,65 @@ static void BM_Geometry_ClosestPoint(benchmark::State& st)
     st.counters["iterations"] = iterations / double(points.size());
 }
 BENCHMARK(BM_Geometry_ClosestPoint)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+namespace
+{
+
+// Shapes whose world box bounds a tessellation: 0 tapered + bent superquadric, 1 four-term hyperquadric.
+sm::ShapeDef tessellated_shape(int64_t index)
+{
+    sm::ShapeDef s = shape_for(1);
+    if (index == 0) {
+        s.taper = {0.5, -0.3};
+        s.bend = {2.0, 0.4};
+        return s;
+    }
+    s.type = sm::ShapeType::Hyperquadric;
+    s.terms = {{{10, 0, 0}, 0, 4}, {{0, 5, 0}, 0, 4}, {{0, 0, 3.3}, 0, 4}, {{4, 4, 4}, 0.1, 2}};
+    return s;
+}
+
+std::vector<sm::Quat> random_orientations()
+{
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> g;
+    std::vector<sm::Quat> qs;
+    for (int i = 0; i < k_inputs; ++i)
+        qs.push_back(sm::normalized(sm::Quat{g(rng), g(rng), g(rng), g(rng)}));
+    return qs;
+}
+
+} // namespace
+
+// World box as the broadphase asks for it every step; arg 0 as shape_for (undeformed, support map).
+static void BM_Geometry_WorldAabb(benchmark::State& st)
+{
+    const sm::ShapeDef s = shape_for(st.range(0));
+    const std::vector<sm::Quat> qs = random_orientations();
+    size_t i = 0;
+    for (auto _ : st) {
+        benchmark::DoNotOptimize(sm::world_aabb(s, {1, 2, 3}, qs[i]));
+        i = (i + 1) % qs.size();
+    }
+    st.SetItemsProcessed(int64_t(st.iterations()));
+}
+BENCHMARK(BM_Geometry_WorldAabb)->DenseRange(0, 3);
+
+// Deformed (0) and hyperquadric (1) shapes: the cached vertex set against recomputing it per call.
+static void BM_Geometry_WorldAabbTessellated(benchmark::State& st)
+{
+    const sm::ShapeDef s = tessellated_shape(st.range(0));
+    const bool cached = st.range(1) != 0;
+    const std::vector<sm::Quat> qs = random_orientations();
+    size_t i = 0;
+    for (auto _ : st) {
+        benchmark::DoNotOptimize(cached ? sm::world_aabb(s, {1, 2, 3}, qs[i])
+                                        : sm::world_aabb_uncached(s, {1, 2, 3}, qs[i]));
+        i = (i + 1) % qs.size();
+    }
+    st.SetItemsProcessed(int64_t(st.iterations()));
+}
+BENCHMARK(BM_Geometry_WorldAabbTessellated)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"shape", "cached"})
+    ->Unit(benchmark::kMicrosecond);

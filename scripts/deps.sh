@@ -9,6 +9,7 @@ packages=(
   libcli11-dev         # the supermodal command line
   libeigen3-dev        # modal dynamics: sparse assembly, dense eigen solves
   libspectra-dev       # modal dynamics: shift-invert eigen solves for large lattices
+  libccd-dev           # contact: MPR penetration depth of convex pairs
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
 )

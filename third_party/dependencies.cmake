@@ -3,6 +3,8 @@ find_package(nlohmann_json 3.10 CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(Eigen3 3.4 CONFIG REQUIRED)   # modal: sparse assembly, dense eigen solves
 find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)  # modal: shift-invert eigen solves
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(CCD REQUIRED IMPORTED_TARGET ccd)  # contact: MPR penetration (libccd, double build)
 if(SUPERMODAL_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

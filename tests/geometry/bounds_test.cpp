@@ -1,4 +1,5 @@
 // Tests for engine/src/geometry/bounds.cpp.
+#include "geometry/bounds_internal.h"
 #include "supermodal/geometry.h"
 #include "support/shapes.h"
 
@@ -157,4 +158,52 @@ TEST(Bounds, HyperquadricContainsItsSurface)
         points.push_back(sm::Vec3{0, 0, 1} + sm::rotate(q, v));
     ASSERT_FALSE(points.empty());
     expect_tight(box, points, k_round_off, k_slack);
+}
+
+TEST(Bounds, CachedVertexSetsGiveTheUncachedBoxBitForBit)
+{
+    // Shapes that bound a tessellation keep its vertices in a cache keyed by their parameters; a cached
+    // box must equal the recomputed one exactly (determinism must not depend on what was cached).
+    sm::ShapeDef tapered = superquadric({0.5, 0.3, 1.0}, 0.3, 2.5);
+    tapered.taper = {0.6, -0.4};
+    sm::ShapeDef bent = superquadric({0.3, 0.3, 1.5}, 1.0, 0.1);
+    bent.bend = {0.5, 0.7};
+    sm::ShapeDef hyper = sm::default_shape_def();
+    hyper.type = sm::ShapeType::Hyperquadric;
+    hyper.terms = {{{2, 0, 0}, 0, 8}, {{0, 2, 0}, 0.1, 4}, {{0, 0, 2}, 0, 8}, {{1, 1, 1}, 0, 2}};
+    sm::clear_bounds_cache();
+    std::mt19937_64 rng(19);
+    for (int round = 0; round < 3; ++round)
+        for (const sm::ShapeDef& s : {tapered, bent, hyper}) {
+            const sm::Quat q = random_orientation(rng);
+            const sm::Vec3 at{0.1 * round, -2.0, 3.0};
+            const sm::Aabb cached = sm::world_aabb(s, at, q), fresh = sm::world_aabb_uncached(s, at, q);
+            for (int i = 0; i < 3; ++i) {
+                EXPECT_EQ(cached.min[i], fresh.min[i]);
+                EXPECT_EQ(cached.max[i], fresh.max[i]);
+            }
+        }
+    EXPECT_EQ(sm::bounds_cache_size(), 3u); // one entry per distinct shape, however often asked
+
+    // A changed parameter is a different shape, never a stale hit.
+    sm::ShapeDef longer = bent;
+    longer.radii.z = 3.0;
+    const sm::Aabb a = sm::world_aabb(bent, {}, sm::Quat::identity());
+    const sm::Aabb b = sm::world_aabb(longer, {}, sm::Quat::identity());
+    EXPECT_GT(b.max.z - b.min.z, 1.5 * (a.max.z - a.min.z));
+    EXPECT_EQ(sm::bounds_cache_size(), 4u);
+
+    // Past its capacity the cache evicts instead of growing without bound, and still answers right.
+    for (size_t i = 0; i <= sm::k_bounds_cache_capacity; ++i) {
+        sm::ShapeDef s = tapered;
+        s.taper.kx = -0.5 + 1e-3 * double(i);
+        (void)sm::world_aabb(s, {}, sm::Quat::identity());
+    }
+    EXPECT_EQ(sm::bounds_cache_size(), sm::k_bounds_cache_capacity);
+    const sm::Quat q = random_orientation(rng);
+    const sm::Aabb again = sm::world_aabb(bent, {}, q), fresh = sm::world_aabb_uncached(bent, {}, q);
+    EXPECT_EQ(again.min, fresh.min);
+    EXPECT_EQ(again.max, fresh.max);
+    sm::clear_bounds_cache();
+    EXPECT_EQ(sm::bounds_cache_size(), 0u);
 }

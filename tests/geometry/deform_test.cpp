@@ -151,6 +151,7 @@ TEST(Deform, InverseReproducesPointsWhereInvertible)
     });
     EXPECT_LT(worst, k_round_trip);
     EXPECT_GT(checked, 10000);
+    RecordProperty("worst_round_trip_of_size", testing::PrintToString(worst));
 }
 
 TEST(Deform, InverseReportsFailureWhereNotInvertible)

@@ -160,7 +160,7 @@ TEST(HyperquadricMesh, SamplesCarryTheSurfaceArea)
 TEST(HyperquadricMesh, SamplesAreEvenlySpaced)
 {
     // The lattice follows the body's extents and its warp is chosen per shape: measured ratios 1.2 to 2.2
-    // for round, box-like, 1:2:4 and cut-hypercube bodies (docs/geometry_deform.md); the superquadric
+    // for round, box-like, 1:2:4 and cut-hypercube bodies (docs/geometry.md); the superquadric
     // sampler's Done-when bound is 3.
     constexpr double k_max_spacing_ratio = 2.5;
     for (double g : {2.0, 8.0, 20.0})

@@ -21,7 +21,7 @@ namespace
 // H, its log and the ray roots are a few dozen floating-point operations: a few hundred ulps at most.
 constexpr double k_round_off = 1e-12;
 // Quadrature of smooth hyperquadrics (γ ≤ 6) at the default order measures ≤ 1e-11 against the
-// Dirichlet formulas (docs/geometry_deform.md); 1e-8 leaves room for other compilers and libm.
+// Dirichlet formulas (docs/geometry.md); 1e-8 leaves room for other compilers and libm.
 constexpr double k_smooth_quadrature = 1e-8;
 // Central differences, h = 1e-6 of the slab width: truncation ~1e-12·H''', round-off ~1e-10.
 constexpr double k_fd_tolerance = 1e-6;
@@ -109,7 +109,7 @@ TEST(Hyperquadric, ThreeTermMassMatchesDirichletFormulas)
     // x = N⁻¹(u − d) maps {Σ|u_i|^γ_i ≤ 1} onto the body: V = ∫du / |det N|, the centre is where every
     // term vanishes, and the second moment about it is N⁻¹·diag(∫u_i²)·N⁻ᵀ / |det N|.
     // γ ≥ 2 only: below 2, |t|^γ has an unbounded second derivative where a term vanishes and the
-    // quadrature slows to about h^2.5 (γ = 1.5: 5e-8 at the default order; docs/geometry_deform.md).
+    // quadrature slows to about h^2.5 (γ = 1.5: 5e-8 at the default order; docs/geometry.md).
     for (const auto& g : {std::array<double, 3>{2, 2, 2}, {3, 3, 3}, {4, 4, 2.5}}) {
         const sm::ShapeDef s = skew(g[0], g[1], g[2]);
         const double gamma[3] = {g[0], g[1], g[2]};

@@ -14,7 +14,7 @@ namespace
 {
 
 // The superquadric quadrature measures ≤ 1e-10 relative at the default order over ε ∈ [0.01, 4]
-// (docs/geometry_deform.md); the closed forms it is checked against are exact to round-off.
+// (docs/geometry.md); the closed forms it is checked against are exact to round-off.
 constexpr double k_quadrature = 1e-9;
 // Summing ~10^5 positive terms in double: ~1e-12 relative.
 constexpr double k_summation = 1e-11;

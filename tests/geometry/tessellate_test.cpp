@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -116,6 +117,8 @@ TEST(Tessellate, MeshVolumeConvergesToClosedForm)
     for (const Case& c : cases) {
         const sm::ShapeDef s = superquadric(c.radii, c.e1, c.e2);
         const double coarse = volume_error(s, 64), fine = volume_error(s, 256);
+        RecordProperty("volume_error_64_256_e" + std::to_string(c.e1) + "_" + std::to_string(c.e2),
+                       testing::PrintToString(coarse) + " " + testing::PrintToString(fine));
         EXPECT_LT(std::abs(fine), c.tolerance_at_256) << c.e1 << " " << c.e2;
         if (std::abs(coarse) > k_exact) {
             EXPECT_LT(std::abs(fine), std::abs(coarse) / k_min_gain) << c.e1 << " " << c.e2;

@@ -69,6 +69,8 @@ struct Aabb {
     Vec3 max{};
 };
 /// Tight world-space box of the shape at a pose (taper and bend included). Planes give ±1e300.
+/// Deformed superquadrics and hyperquadrics bound a mesh whose vertices are computed once per distinct
+/// shape and cached process-wide (thread-safe; the result is bit-identical to recomputing).
 [[nodiscard]] Aabb world_aabb(const ShapeDef& shape, const Vec3& position, const Quat& orientation);
 
 // ---- Barr deformations (taper, then bend, along the polar axis z) -----------------------------------

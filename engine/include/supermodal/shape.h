@@ -44,8 +44,8 @@ struct ShapeDef {
     Vec3 radii{0.5, 0.5, 0.5};  ///< Superquadric radii a1, a2, a3 [m], shape frame, each > 0.
     double epsilon1 = 1.0;      ///< Superquadric north-south exponent ε1 [-], in (0, 4].
     double epsilon2 = 1.0;      ///< Superquadric east-west exponent ε2 [-], in (0, 4].
-    Taper taper{};              ///< Stored for the geometry layer; not yet used by dynamics.
-    Bend bend{};                ///< Stored for the geometry layer; not yet used by dynamics.
+    Taper taper{};              ///< Barr taper; mass properties, bounds and samples include it.
+    Bend bend{};                ///< Barr bend; mass properties, bounds and samples include it.
     Vec3 plane_normal{0, 1, 0}; ///< Plane outward normal, world frame, non-zero (normalised on use).
     double plane_offset = 0.0;  ///< Plane offset along the normal [m].
     std::vector<HyperquadricTerm> terms{}; ///< Hyperquadric terms (≥ 3, normals spanning 3-D), shape frame.
@@ -59,10 +59,17 @@ struct ShapeDef {
 
 /// Mass, centre of mass and principal inertia of a solid of uniform density.
 struct MassProperties {
-    double volume = 0.0;     ///< [m³].
-    double mass = 0.0;       ///< [kg].
-    Vec3 center_of_mass{};   ///< Shape frame [m]; zero for untapered, unbent superquadrics.
-    Vec3 inertia_diagonal{}; ///< Principal moments about the centre of mass [kg·m²], shape axes.
+    double volume = 0.0;   ///< [m³].
+    double mass = 0.0;     ///< [kg].
+    Vec3 center_of_mass{}; ///< Shape frame [m]; zero for untapered, unbent superquadrics.
+    /// Principal moments about the centre of mass [kg·m²]: inertia_diagonal[i] is about the axis
+    /// rotate(principal_axes, e_i) of the shape frame.
+    Vec3 inertia_diagonal{};
+    /// Rotation from the principal frame to the shape frame. Identity for untapered, unbent
+    /// superquadrics; a taper plus bend, or a hyperquadric with oblique terms, turns the principal axes.
+    /// Each principal axis is matched to the shape axis it is closest to (small deformations keep
+    /// the moments in the undeformed shape's slots).
+    Quat principal_axes = Quat::identity();
 };
 
 /// Closed-form volume of a superquadric: V = 2·a1·a2·a3·ε1·ε2·B(ε1/2+1, ε1)·B(ε2/2, ε2/2) [m³].

@@ -80,6 +80,12 @@ struct Snapshot {
     std::vector<Entity> constraints;   ///< Constraint handles (as entities) in index order.
     std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
     uint64_t broken_constraint_count = 0;
+
+    // Contact manifolds of support-map pairs, sorted by pair key; per point, the point on A then the
+    // point on B, each in its own body frame [m].
+    std::vector<uint64_t> manifold_keys;
+    std::vector<int> manifold_counts;
+    std::vector<Vec3> manifold_points;
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

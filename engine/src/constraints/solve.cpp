@@ -29,7 +29,7 @@ struct Side {
 
 Mat3 world_inv_inertia(const BodyModel& m, const Pose& p)
 {
-    const Mat3 r = to_mat3(p.orientation);
+    const Mat3 r = to_mat3(principal_orientation(m, p.orientation));
     return r * Mat3::diagonal(m.inv_inertia_body) * transpose(r);
 }
 

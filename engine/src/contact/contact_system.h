@@ -4,6 +4,7 @@
 #pragma once
 
 #include "contact/broadphase.h"
+#include "contact/manifold.h"
 #include "contact/narrowphase.h"
 #include "supermodal/contact.h"
 #include "supermodal/world.h"
@@ -38,6 +39,7 @@ struct ZetaCache {
 /// Contact data of a world: state (anchors), derived (pairs, points, contacts), scratch.
 struct ContactWorld {
     std::vector<PairAnchor> anchors;      ///< State: sorted by key; hashed and snapshotted.
+    std::vector<PairManifold> manifolds;  ///< State: support-map pairs' points, sorted by key; hashed.
     std::vector<BroadphaseProxy> proxies; ///< Scratch.
     BroadphaseScratch broadphase;         ///< Scratch.
     std::vector<BodyPair> pairs;          ///< Derived: candidate pairs of this step, sorted.

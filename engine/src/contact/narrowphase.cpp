@@ -95,6 +95,14 @@ int one_direction(const BodyView& from, const BodyView& against, bool from_is_a,
 
 } // namespace
 
+bool use_support_map(ContactPath path, const Collider& a, const Collider& b)
+{
+    if (path == ContactPath::Sampling)
+        return false;
+    const bool plane_a = a.shape.type == ShapeType::Plane, plane_b = b.shape.type == ShapeType::Plane;
+    return (a.convex || plane_a) && (b.convex || plane_b) && !(plane_a && plane_b);
+}
+
 InsideTest test_point(const Collider& c, const Vec3& p)
 {
     InsideTest t;

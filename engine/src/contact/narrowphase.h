@@ -7,6 +7,7 @@
 #pragma once
 
 #include "contact/collider.h"
+#include "supermodal/contact.h"
 #include "supermodal/geometry.h"
 
 #include <vector>
@@ -38,6 +39,11 @@ int collide_sampled(const BodyView& a, const BodyView& b, std::vector<ContactPoi
 /// body is A; flipped when body_is_a is false). Returns the number appended.
 int collide_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
                   std::vector<ContactPoint>& out_points);
+
+/// Whether a pair goes through the support map (MPR and manifold) rather than sampling: not when the
+/// path is Sampling; otherwise when both are convex (undeformed superquadrics, ε ≤ 2) or one is a
+/// plane and the other convex.
+[[nodiscard]] bool use_support_map(ContactPath path, const Collider& a, const Collider& b);
 
 /// Point of a shape-frame query: the contact measure and, when inside, depth and outward normal.
 struct InsideTest {

@@ -22,10 +22,12 @@ void integrate_forces(const StepContext& ctx, Registry& reg)
                 return;
             vel.linear += ctx.h * (body.gravity_scale * ctx.gravity + body.inv_mass * acc.force);
             // Torque kick on the angular momentum; the torque-free flow follows in integrate_positions.
-            const Vec3 torque_body = inv_rotate(pose.orientation, acc.torque);
-            const Vec3 w_body = inv_rotate(pose.orientation, vel.angular);
+            // In the principal frame, where the inertia is diagonal.
+            const Quat q = principal_orientation(body, pose.orientation);
+            const Vec3 torque_body = inv_rotate(q, acc.torque);
+            const Vec3 w_body = inv_rotate(q, vel.angular);
             const Vec3 momentum_body = hadamard(body.inertia_body, w_body) + ctx.h * torque_body;
-            vel.angular = rotate(pose.orientation, hadamard(body.inv_inertia_body, momentum_body));
+            vel.angular = rotate(q, hadamard(body.inv_inertia_body, momentum_body));
         });
 }
 
@@ -43,13 +45,14 @@ void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io
             break;
         }
         pose.position += ctx.h * vel.linear;
-        const Vec3 momentum_body = hadamard(body.inertia_body, inv_rotate(pose.orientation, vel.angular));
-        const RotationStep rot =
-            rotate_torque_free(pose.orientation, momentum_body, body.inertia_body, ctx.h);
+        // The torque-free flow in the principal frame; the pose keeps the shape frame (q·p⁻¹).
+        const Quat q = principal_orientation(body, pose.orientation);
+        const Vec3 momentum_body = hadamard(body.inertia_body, inv_rotate(q, vel.angular));
+        const RotationStep rot = rotate_torque_free(q, momentum_body, body.inertia_body, ctx.h);
         if (rot.used_fallback)
             ++io_warnings.gyroscopic_fallbacks;
-        pose.orientation = rot.orientation;
-        vel.angular = rotate(pose.orientation, hadamard(body.inv_inertia_body, rot.momentum_body));
+        pose.orientation = rot.orientation * conjugate(body.principal);
+        vel.angular = rotate(rot.orientation, hadamard(body.inv_inertia_body, rot.momentum_body));
     });
 }
 

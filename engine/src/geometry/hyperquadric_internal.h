@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Surface samples and meshes of hyperquadric shapes, for sampling.cpp and tessellate.cpp. A hyperquadric
 // with every γ ≥ 1 is convex, so it is star-shaped about an interior point: both functions cast rays from
-// that point over a cube-sphere grid and root-find H = 1 along each ray (docs/geometry_deform.md).
+// that point over a cube-sphere grid and root-find H = 1 along each ray (docs/geometry.md).
 #pragma once
 
 #include "supermodal/geometry.h"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Hyperquadric helpers shared by deform.cpp (contact measure), hyperquadric_mesh.cpp (meshes, samples),
 // mass_deformed.cpp (quadrature) and the scene loader (boundedness checks). Method:
-// docs/geometry_deform.md.
+// docs/geometry.md.
 #pragma once
 
 #include "supermodal/math.h"

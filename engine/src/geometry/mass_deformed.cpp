@@ -222,6 +222,27 @@ void jacobi_eigen(Mat3& a, Mat3& out_v)
     }
 }
 
+/// Unit quaternion of a proper rotation matrix (Shepperd: divide by the largest of the four candidates).
+Quat quat_from_rotation_matrix(const Mat3& r)
+{
+    const double t = r.m[0][0] + r.m[1][1] + r.m[2][2];
+    Quat q;
+    if (t >= r.m[0][0] && t >= r.m[1][1] && t >= r.m[2][2]) {
+        const double s = 2.0 * std::sqrt(1.0 + t);
+        q = {0.25 * s, (r.m[2][1] - r.m[1][2]) / s, (r.m[0][2] - r.m[2][0]) / s, (r.m[1][0] - r.m[0][1]) / s};
+    } else if (r.m[0][0] >= r.m[1][1] && r.m[0][0] >= r.m[2][2]) {
+        const double s = 2.0 * std::sqrt(1.0 + r.m[0][0] - r.m[1][1] - r.m[2][2]);
+        q = {(r.m[2][1] - r.m[1][2]) / s, 0.25 * s, (r.m[0][1] + r.m[1][0]) / s, (r.m[0][2] + r.m[2][0]) / s};
+    } else if (r.m[1][1] >= r.m[2][2]) {
+        const double s = 2.0 * std::sqrt(1.0 + r.m[1][1] - r.m[0][0] - r.m[2][2]);
+        q = {(r.m[0][2] - r.m[2][0]) / s, (r.m[0][1] + r.m[1][0]) / s, 0.25 * s, (r.m[1][2] + r.m[2][1]) / s};
+    } else {
+        const double s = 2.0 * std::sqrt(1.0 + r.m[2][2] - r.m[0][0] - r.m[1][1]);
+        q = {(r.m[1][0] - r.m[0][1]) / s, (r.m[0][2] + r.m[2][0]) / s, (r.m[1][2] + r.m[2][1]) / s, 0.25 * s};
+    }
+    return normalized(q);
+}
+
 } // namespace
 
 QuadratureMass quadrature_mass(const ShapeDef& def, double density, int order)
@@ -269,6 +290,18 @@ QuadratureMass quadrature_mass(const ShapeDef& def, double density, int order)
         for (int r = 0; r < 3; ++r)
             out.principal_axes.m[r][best_slot] = sign * axes.m[r][best_axis];
     }
+    // A right-handed frame, so that it is a rotation: flip the least aligned axis if needed (a principal
+    // axis of either sign is one).
+    const Mat3& pa = out.principal_axes;
+    if (dot(pa.col(0), cross(pa.col(1), pa.col(2))) < 0.0) {
+        int least = 0;
+        for (int i = 1; i < 3; ++i)
+            if (std::abs(pa.m[i][i]) < std::abs(pa.m[least][least]))
+                least = i;
+        for (int r = 0; r < 3; ++r)
+            out.principal_axes.m[r][least] = -out.principal_axes.m[r][least];
+    }
+    mp.principal_axes = quat_from_rotation_matrix(out.principal_axes);
     return out;
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Equal-distance surface sampling of superquadrics (design in sampling.h and docs/geometry_sampling.md).
+// Equal-distance surface sampling of superquadrics (design in sampling.h and docs/geometry.md).
 //
 // Samples sit on latitude rings about one `spacing` apart in meridian arc length, and each ring carries
 // samples about one `spacing` apart in its own arc length, so neither the poles nor the ε → 0 edges

@@ -69,7 +69,7 @@ struct QuadrantTable {
 [[nodiscard]] QuadrantTable make_quadrant_table(double epsilon, double a, double b, int segment_count);
 
 /// Table segments per quadrant used by sampling and tessellation: resolves the ε = 0.01 corner with
-/// about a dozen segments and keeps the polyline area within 1e-5 of the surface (docs/geometry_sampling.md).
+/// about a dozen segments and keeps the polyline area within 1e-5 of the surface (docs/geometry.md).
 inline constexpr int k_quadrant_segments = 512;
 
 /// A superquadric ready for arc-length parametrisation. The meridian is measured in a reference

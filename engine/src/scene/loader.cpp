@@ -30,8 +30,12 @@ using scene_io::pointer_join;
 const std::vector<std::string_view> k_top_keys = {"settings", "materials", "include", "bodies", "constraints"};
 const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
 constexpr size_t k_max_include_depth = 16;
-const std::vector<std::string_view> k_settings_keys = {"dt", "substeps", "gravity", "duration",
-                                                       "max_steps_per_advance", "constraint_iterations"};
+const std::vector<std::string_view> k_settings_keys = {
+    "dt", "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations", "contact"};
+const std::vector<std::string_view> k_contact_keys = {"path"};
+// In ContactPath order.
+const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
+static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
 const std::vector<std::string_view> k_material_keys = {
     "density", "young", "poisson", "friction", "restitution", "damping_ratio", "yield_stress"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
@@ -55,6 +59,15 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
                 world.constraint_iterations);
     r.field_int(*settings, where, "max_steps_per_advance", scene_io::at_least(1.0),
                 world.max_steps_per_advance);
+    if (const Json* contact = r.member(*settings, "contact")) {
+        const std::string contact_where = where + "/contact";
+        if (r.check_object(*contact, contact_where, k_contact_keys))
+            if (const Json* path = r.member(*contact, "path")) {
+                size_t index = 0;
+                r.read_choice(*path, contact_where + "/path", k_contact_paths, index);
+                world.contact.path = static_cast<ContactPath>(index);
+            }
+    }
     if (!r.ok())
         return;
     if (Status status = validate(world); !status)

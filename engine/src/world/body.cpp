@@ -61,11 +61,14 @@ void set_mass_model(BodyModel& model, const ShapeDef& shape, double density)
     model.mass = compute_mass_properties(shape, density);
     model.inv_mass = 0.0;
     model.inertia_body = model.inv_inertia_body = Vec3{};
+    model.principal = Quat::identity();
     if (model.motion == MotionType::Dynamic) {
         model.inv_mass = 1.0 / model.mass.mass;
         model.inertia_body = model.mass.inertia_diagonal;
         const Vec3& i = model.inertia_body;
         model.inv_inertia_body = {1.0 / i.x, 1.0 / i.y, 1.0 / i.z};
+        // The pose stays the shape frame the user placed; inertia lives in the principal frame.
+        model.principal = normalized(model.mass.principal_axes);
     }
 }
 
@@ -221,9 +224,10 @@ Vec3 body_angular_momentum(const World& world, Entity e)
     const World::Impl* w = live(world, e);
     if (!w)
         return {};
-    const Quat q = w->reg.get<Pose>(e).orientation;
+    const BodyModel& m = w->reg.get<BodyModel>(e);
+    const Quat q = principal_orientation(m, w->reg.get<Pose>(e).orientation);
     const Vec3 w_body = inv_rotate(q, w->reg.get<Velocity>(e).angular);
-    return rotate(q, hadamard(w->reg.get<BodyModel>(e).inertia_body, w_body));
+    return rotate(q, hadamard(m.inertia_body, w_body));
 }
 double body_kinetic_energy(const World& world, Entity e)
 {
@@ -232,7 +236,7 @@ double body_kinetic_energy(const World& world, Entity e)
         return 0.0;
     const BodyModel& m = w->reg.get<BodyModel>(e);
     const Velocity& v = w->reg.get<Velocity>(e);
-    const Vec3 w_body = inv_rotate(w->reg.get<Pose>(e).orientation, v.angular);
+    const Vec3 w_body = inv_rotate(principal_orientation(m, w->reg.get<Pose>(e).orientation), v.angular);
     return 0.5 * m.mass.mass * dot(v.linear, v.linear) + 0.5 * dot(w_body, hadamard(m.inertia_body, w_body));
 }
 double body_potential_energy(const World& world, Entity e)
@@ -338,7 +342,7 @@ void apply_angular_impulse(World& world, Entity e, const Vec3& impulse)
     if (!w || w->reg.get<BodyModel>(e).motion != MotionType::Dynamic)
         return;
     const BodyModel& m = w->reg.get<BodyModel>(e);
-    const Quat q = w->reg.get<Pose>(e).orientation;
+    const Quat q = principal_orientation(m, w->reg.get<Pose>(e).orientation);
     w->reg.get<Velocity>(e).angular += rotate(q, hadamard(m.inv_inertia_body, inv_rotate(q, impulse)));
 }
 

@@ -123,6 +123,16 @@ uint64_t World::state_hash() const
         fnv.f64(a.spring.z);
         fnv.f64(a.twist);
     }
+    for (const PairManifold& m : w.contact.manifolds) {
+        fnv.u64(m.key);
+        fnv.u64(static_cast<uint64_t>(m.count));
+        for (int i = 0; i < m.count; ++i)
+            for (const Vec3& p : {m.points[i].local_a, m.points[i].local_b}) {
+                fnv.f64(p.x);
+                fnv.f64(p.y);
+                fnv.f64(p.z);
+            }
+    }
     w.constraints.reg.pool().for_each_alive([&](Entity e) {
         fnv.u64((uint64_t{e.index} << 32) | e.generation);
         values.clear();
@@ -151,6 +161,14 @@ Snapshot World::snapshot() const
         s.anchor_springs.push_back(a.spring);
         s.anchor_twists.push_back(a.twist);
     }
+    for (const PairManifold& m : w.contact.manifolds) {
+        s.manifold_keys.push_back(m.key);
+        s.manifold_counts.push_back(m.count);
+        for (int i = 0; i < m.count; ++i) {
+            s.manifold_points.push_back(m.points[i].local_a);
+            s.manifold_points.push_back(m.points[i].local_b);
+        }
+    }
     w.constraints.reg.pool().for_each_alive([&](Entity e) {
         s.constraints.push_back(e);
         pack_constraint(w.constraints.reg.get<ConstraintState>(e), s.constraint_values);
@@ -165,6 +183,14 @@ Status World::restore(const Snapshot& s)
     if (s.values.size() != s.entities.size() * k_values_per_body ||
         s.anchor_keys.size() != s.anchor_springs.size() || s.anchor_keys.size() != s.anchor_twists.size())
         return Error{"", "snapshot", "corrupt snapshot: value count does not match its bodies"};
+    size_t manifold_points = 0;
+    for (int count : s.manifold_counts) {
+        if (count < 0 || count > PairManifold::k_capacity)
+            return Error{"", "snapshot", "corrupt snapshot: a contact manifold has a bad point count"};
+        manifold_points += 2 * static_cast<size_t>(count);
+    }
+    if (s.manifold_counts.size() != s.manifold_keys.size() || s.manifold_points.size() != manifold_points)
+        return Error{"", "snapshot", "corrupt snapshot: manifold points do not match their counts"};
     std::vector<Entity> live;
     w.reg.pool().for_each_alive([&](Entity e) {
         if (w.reg.has<Pose>(e))
@@ -186,6 +212,13 @@ Status World::restore(const Snapshot& s)
     w.contact.anchors.clear();
     for (size_t i = 0; i < s.anchor_keys.size(); ++i)
         w.contact.anchors.push_back({s.anchor_keys[i], s.anchor_springs[i], s.anchor_twists[i]});
+    w.contact.manifolds.clear();
+    for (size_t i = 0, next = 0; i < s.manifold_keys.size(); ++i) {
+        PairManifold m{.key = s.manifold_keys[i], .count = s.manifold_counts[i]};
+        for (int j = 0; j < m.count; ++j, next += 2)
+            m.points[j] = {s.manifold_points[next], s.manifold_points[next + 1]};
+        w.contact.manifolds.push_back(m);
+    }
     w.time = s.time;
     w.step_count = s.step_count;
     w.accumulator = s.accumulator;

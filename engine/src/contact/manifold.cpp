@@ -1,0 +1,270 @@
+// SPDX-License-Identifier: MIT
+#include "contact/manifold.h"
+
+#include "contact/mpr.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+// Two points closer than this (fraction of the smaller body's smallest radius) are the same contact:
+// a fresh one replaces the old. Old points that slid apart by more than this are dropped.
+constexpr double k_merge_rel = 0.1;
+// Old points lifted off by more than this (fraction of the smallest radius) are dropped.
+constexpr double k_separate_rel = 0.02;
+// Tilts of the support direction towards a face diagonal, largest first: on an ε = 0.3 face they reach
+// 1.0, 0.67, 0.44, 0.30 of the way to the edge (x/a = t^(ε/(2−ε))), so the outermost point still inside
+// the other body marks the edge of the patch; on a sharp box (ε ≤ 0.1) every tilt gives the corner.
+constexpr double k_tilts[] = {1.0, 0.1, 0.01, 0.001};
+// A tilted candidate counts only if it is at least this fraction of the pair's depth deep: the
+// outermost points of a patch barely touch (a rounded corner sits above the face), and four of them
+// would carry the body's weight at a sink far below the face. With it the pair's weighted mean depth
+// is within a factor 2 of the deepest.
+constexpr double k_min_depth_ratio = 0.5;
+// Bodies with an exponent below this have flat faces and get tilted candidates; rounder ones touch in
+// one point (a sphere's tilted supports only crowd the deepest point).
+constexpr double k_flat_exponent = 0.8;
+
+struct Candidate {
+    Vec3 pa, pb;  // the contact as a point of A and of B [m], world
+    double depth; // along the normal [m]
+};
+
+double smallest_radius(const Collider& c)
+{
+    const Vec3& r = c.shape.radii;
+    return std::min({r.x, r.y, r.z});
+}
+
+bool has_flat_faces(const Collider& c)
+{
+    return std::min(c.shape.epsilon1, c.shape.epsilon2) < k_flat_exponent;
+}
+
+Vec3 to_world(const BodyView& body, const Vec3& local)
+{
+    return body.position + rotate(body.orientation, local);
+}
+
+Vec3 to_body(const BodyView& body, const Vec3& world)
+{
+    return inv_rotate(body.orientation, world - body.position);
+}
+
+// Calls accept(support point) along `dir` tilted towards each of the four diagonals of the body's face
+// that faces `dir`, largest tilt first, until accept says the point is in contact.
+template <class Accept> void tilted_supports(const BodyView& body, const Vec3& dir, Accept&& accept)
+{
+    const Vec3 axes[3] = {rotate(body.orientation, {1, 0, 0}), rotate(body.orientation, {0, 1, 0}),
+                          rotate(body.orientation, {0, 0, 1})};
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+        if (std::abs(dot(axes[i], dir)) > std::abs(dot(axes[k], dir)))
+            k = i;
+    const Vec3 e = axes[(k + 1) % 3];
+    const Vec3 u = normalized(e - dot(e, dir) * dir), v = cross(dir, u);
+    for (int s = 0; s < 4; ++s) {
+        const Vec3 diagonal = ((s & 1) != 0 ? u : -u) + ((s & 2) != 0 ? v : -v);
+        for (double t : k_tilts)
+            if (accept(body_support(body, dir + t * diagonal)))
+                break;
+    }
+}
+
+// Depth of a world point inside a convex body along its own surface normal (first order), or < 0.
+double depth_inside(const BodyView& body, const Vec3& p)
+{
+    const Collider& c = *body.collider;
+    const InsideTest t = test_point(c, to_body(body, p) + c.com_shape);
+    return t.inside ? t.depth : -1.0;
+}
+
+void add_unique(std::vector<Candidate>& list, const Candidate& c, double merge)
+{
+    for (const Candidate& other : list)
+        if (length(other.pa - c.pa) < merge)
+            return;
+    list.push_back(c);
+}
+
+// Whether p (in the contact plane with normal n) lies in the triangle abc, edges included.
+bool in_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n)
+{
+    const double s1 = dot(cross(b - a, p - a), n), s2 = dot(cross(c - b, p - b), n);
+    const double s3 = dot(cross(a - c, p - c), n);
+    return (s1 >= 0.0 && s2 >= 0.0 && s3 >= 0.0) || (s1 <= 0.0 && s2 <= 0.0 && s3 <= 0.0);
+}
+
+// Keeps the deepest point and the three that span the largest area with it in the contact plane;
+// then, if a fourth spare point makes a quadrilateral with those three that contains the deepest (a
+// flat face's centre inside its corners), the spare replaces it: the patch's outline holds the body
+// better than its middle.
+void reduce(std::vector<Candidate>& pts, const Vec3& n)
+{
+    if (pts.size() <= PairManifold::k_capacity)
+        return;
+    auto plane = [&](const Vec3& p) { return p - dot(p, n) * n; };
+    auto pick = [&](auto&& score) {
+        size_t best = 0;
+        double best_score = -1.0;
+        for (size_t i = 0; i < pts.size(); ++i)
+            if (const double s = score(plane(pts[i].pa)); s > best_score) {
+                best = i;
+                best_score = s;
+            }
+        return best;
+    };
+    std::vector<Candidate> kept;
+    auto take = [&](size_t i) {
+        kept.push_back(pts[i]);
+        pts.erase(pts.begin() + static_cast<std::ptrdiff_t>(i));
+    };
+    size_t deepest = 0;
+    for (size_t i = 1; i < pts.size(); ++i)
+        if (pts[i].depth > pts[deepest].depth)
+            deepest = i;
+    take(deepest);
+    const Vec3 p0 = plane(kept[0].pa);
+    take(pick([&](const Vec3& p) { return dot(p - p0, p - p0); }));
+    const Vec3 p1 = plane(kept[1].pa);
+    take(pick([&](const Vec3& p) { return length(cross(p1 - p0, p - p0)); }));
+    const Vec3 p2 = plane(kept[2].pa);
+    auto quad_score = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        return [&, a, b, c](const Vec3& p) {
+            return length(cross(a - p, b - p)) + length(cross(b - p, c - p)) + length(cross(c - p, a - p));
+        };
+    };
+    take(pick(quad_score(p0, p1, p2)));
+    const Vec3 p3 = plane(kept[3].pa);
+    if (!pts.empty()) {
+        const Candidate spare = pts[pick(quad_score(p1, p2, p3))];
+        const Vec3 q = plane(spare.pa);
+        if (in_triangle(p0, p1, p2, p3, n) || in_triangle(p0, p1, p2, q, n) ||
+            in_triangle(p0, p2, p3, q, n) || in_triangle(p0, p1, p3, q, n))
+            kept[0] = spare;
+    }
+    pts.swap(kept);
+}
+
+// Merges fresh candidates with the surviving old points, reduces to capacity, stores, and appends the
+// touching points with equal weights.
+int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, std::vector<Candidate>& old,
+           const Vec3& n, double merge, bool flip, PairManifold& io, std::vector<ContactPoint>& out)
+{
+    for (const Candidate& c : old)
+        add_unique(fresh, c, merge);
+    reduce(fresh, n);
+    io.count = static_cast<int>(fresh.size());
+    int touching = 0;
+    for (size_t i = 0; i < fresh.size(); ++i) {
+        io.points[i].local_a = to_body(a, fresh[i].pa);
+        io.points[i].local_b = b != nullptr ? to_body(*b, fresh[i].pb) : Vec3{};
+        touching += fresh[i].depth > 0.0 ? 1 : 0;
+    }
+    for (const Candidate& c : fresh)
+        if (c.depth > 0.0)
+            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching});
+    return touching;
+}
+
+} // namespace
+
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out)
+{
+    const MprResult mpr = mpr_penetration(a, b);
+    if (!mpr.hit) {
+        io.count = 0;
+        return 0;
+    }
+    const Vec3 n = mpr.normal;
+    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
+    const double merge = k_merge_rel * r;
+
+    // Old points: material points of both bodies, re-measured along today's normal.
+    std::vector<Candidate> old;
+    for (int i = 0; i < io.count; ++i) {
+        const Vec3 pa = to_world(a, io.points[i].local_a), pb = to_world(b, io.points[i].local_b);
+        const double depth = dot(pb - pa, n);
+        const Vec3 slide = (pb - pa) - depth * n;
+        if (depth > -k_separate_rel * r && length(slide) < merge)
+            old.push_back({pa, pb, depth});
+    }
+
+    // Fresh points: the deepest point of each body along the normal, if it lies inside the other (an
+    // overhanging face's centre may not), then the tilted supports of flat faces.
+    std::vector<Candidate> fresh;
+    const Vec3 sa = body_support(a, -n), sb = body_support(b, n);
+    if (depth_inside(b, sa) > 0.0)
+        add_unique(fresh, {sa, sa + mpr.depth * n, mpr.depth}, merge);
+    if (depth_inside(a, sb) > 0.0)
+        add_unique(fresh, {sb - mpr.depth * n, sb, mpr.depth}, merge);
+    if (fresh.empty()) // edge on edge: MPR's own point, halfway between the surfaces
+        fresh.push_back({mpr.point - 0.5 * mpr.depth * n, mpr.point + 0.5 * mpr.depth * n, mpr.depth});
+    const double min_depth = k_min_depth_ratio * mpr.depth;
+    // Tilted candidates every substep, even for a full manifold: keeping only the old material points
+    // (refilling when one drops) left points from the first touch near the face centres, and a
+    // ten-box stack with them buckled even at 100 Hz (measured). The plane through the other body's
+    // support point bounds that body (convex), so a candidate less than min_depth below it cannot be
+    // min_depth deep: its inside test is skipped.
+    if (has_flat_faces(*a.collider))
+        tilted_supports(a, -n, [&](const Vec3& p) {
+            if (dot(sb - p, n) < min_depth)
+                return false;
+            const double d = depth_inside(b, p);
+            if (d >= min_depth)
+                add_unique(fresh, {p, p + d * n, d}, merge);
+            return d >= min_depth;
+        });
+    if (has_flat_faces(*b.collider))
+        tilted_supports(b, n, [&](const Vec3& p) {
+            if (dot(p - sa, n) < min_depth)
+                return false;
+            const double d = depth_inside(a, p);
+            if (d >= min_depth)
+                add_unique(fresh, {p - d * n, p, d}, merge);
+            return d >= min_depth;
+        });
+    return finish(a, &b, fresh, old, n, merge, false, io, out);
+}
+
+int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
+                           std::vector<ContactPoint>& out)
+{
+    // The plane's support along −n is exact: no MPR. Depths are exact for every material point.
+    const Vec3 n = normalized(plane.collider->shape.plane_normal);
+    const double offset = plane.collider->shape.plane_offset;
+    const double r = smallest_radius(*body.collider);
+    const double merge = k_merge_rel * r;
+    auto candidate = [&](const Vec3& p) {
+        return Candidate{p, p + (offset - dot(n, p)) * n, offset - dot(n, p)};
+    };
+
+    std::vector<Candidate> old;
+    for (int i = 0; i < io.count; ++i) {
+        const Candidate c = candidate(to_world(body, io.points[i].local_a));
+        if (c.depth > -k_separate_rel * r)
+            old.push_back(c);
+    }
+    // The support point is the body's deepest: when it is out, every point is.
+    const Candidate deepest = candidate(body_support(body, -n));
+    if (!(deepest.depth > 0.0)) {
+        io.count = 0;
+        return 0;
+    }
+    std::vector<Candidate> fresh{deepest};
+    if (has_flat_faces(*body.collider))
+        tilted_supports(body, -n, [&](const Vec3& p) {
+            const Candidate c = candidate(p);
+            const bool deep = c.depth >= k_min_depth_ratio * deepest.depth;
+            if (deep)
+                add_unique(fresh, c, merge);
+            return deep;
+        });
+    return finish(body, nullptr, fresh, old, n, merge, !body_is_a, io, out);
+}
+
+} // namespace supermodal

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// Support-map narrowphase with a persistent contact manifold (up to 4 points per pair).
+//
+// MPR (mpr.h) gives one normal and depth per pair; a flat face needs more than one point to rest flat.
+// Each substep the manifold (a) keeps its old points, stored as material points of both bodies in
+// their body frames so they follow the motion, re-measuring their depth along today's normal and
+// dropping those that separated or slid apart; (b) adds the deepest point of A along the normal and,
+// for flat-faced bodies, the support points along the normal tilted towards the face's diagonals
+// that lie inside the other body (the face's corners on a box, the edge of the patch on a rounded
+// box); (c) keeps the deepest point and the three that span the largest area. Every touching point
+// carries the weight 1/count, so the pair's stiffness does not depend on the point count.
+#pragma once
+
+#include "contact/narrowphase.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace supermodal
+{
+
+/// One persistent point: the same contact seen as a material point of each body.
+struct ManifoldPoint {
+    Vec3 local_a{}; ///< Point on A [m], A's body frame.
+    Vec3 local_b{}; ///< Point on B [m], B's body frame (unused when B is a plane).
+};
+
+/// Manifold of one pair; state (hashed, snapshotted), sorted by key in ContactWorld.
+struct PairManifold {
+    static constexpr int k_capacity = 4;
+    uint64_t key = 0; ///< BodyPair::key().
+    int count = 0;
+    std::array<ManifoldPoint, k_capacity> points{};
+};
+
+/// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
+/// points (normal from B towards A, weights summing to 1). Returns the number appended.
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io_manifold,
+                     std::vector<ContactPoint>& out_points);
+
+/// Same for a convex body against a plane: the manifold's A is always the body; normals are flipped
+/// for the output when body_is_a is false (as collide_plane).
+int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
+                           PairManifold& io_manifold, std::vector<ContactPoint>& out_points);
+
+} // namespace supermodal

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#include "contact/mpr.h"
+
+#include <algorithm>
+#include <ccd/ccd.h>
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+static_assert(sizeof(ccd_real_t) == sizeof(double), "libccd must be the double build (Debian's is)");
+
+Vec3 from_ccd(const ccd_vec3_t& v)
+{
+    return {v.v[0], v.v[1], v.v[2]};
+}
+
+void to_ccd(const Vec3& p, ccd_vec3_t* out)
+{
+    out->v[0] = p.x;
+    out->v[1] = p.y;
+    out->v[2] = p.z;
+}
+
+void support_cb(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
+{
+    to_ccd(body_support(*static_cast<const BodyView*>(obj), from_ccd(*dir)), out);
+}
+
+void centre_cb(const void* obj, ccd_vec3_t* out)
+{
+    to_ccd(body_shape_centre(*static_cast<const BodyView*>(obj)), out);
+}
+
+double smallest_radius(const Collider& c)
+{
+    const Vec3& r = c.shape.radii;
+    return std::min({r.x, r.y, r.z});
+}
+
+} // namespace
+
+Vec3 body_support(const BodyView& body, const Vec3& direction)
+{
+    const Collider& c = *body.collider;
+    const Vec3 local = support_point(c.shape, inv_rotate(body.orientation, direction)) - c.com_shape;
+    return body.position + rotate(body.orientation, local);
+}
+
+Vec3 body_shape_centre(const BodyView& body)
+{
+    return body.position - rotate(body.orientation, body.collider->com_shape);
+}
+
+MprResult mpr_penetration(const BodyView& a, const BodyView& b)
+{
+    // libccd's portal loops compare with NaN forever; a non-finite pose has no contact.
+    if (!is_finite(a.position) || !is_finite(a.orientation) || !is_finite(b.position) ||
+        !is_finite(b.orientation))
+        return {};
+    ccd_t ccd;
+    CCD_INIT(&ccd);
+    ccd.support1 = support_cb;
+    ccd.support2 = support_cb;
+    ccd.center1 = centre_cb;
+    ccd.center2 = centre_cb;
+    ccd.max_iterations = k_mpr_max_iterations;
+    ccd.mpr_tolerance =
+        k_mpr_tolerance_rel * std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
+    ccd_real_t depth = 0.0;
+    ccd_vec3_t dir, pos;
+    MprResult r;
+    if (ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos) != 0)
+        return r;
+    // libccd's dir moves B out of A (from A towards B); a touching contact has depth 0 and dir 0.
+    const Vec3 d = from_ccd(dir);
+    const double len = length(d);
+    if (!(depth > 0.0) || !std::isfinite(depth) || !(len > 0.0) || !std::isfinite(len))
+        return r;
+    r.hit = true;
+    r.depth = depth;
+    r.normal = -d / len;
+    r.point = from_ccd(pos);
+    return r;
+}
+
+} // namespace supermodal
