@@ -9,6 +9,6 @@ build=${SUPERMODAL_DEMO_BUILD_DIR:-build-release}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSUPERMODAL_TESTS=OFF -DSUPERMODAL_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target supermodal
 mkdir -p out
-scene=${1:-samples/demo.json}
+scene=${1:-samples/chair_with_dummy.json}
 "$build/tools/supermodal" run "$scene" --json out/summary.json --csv out/trace.csv
 echo "demo: wrote out/summary.json and out/trace.csv from $scene"

@@ -63,12 +63,14 @@ struct ConstraintDef {
     Entity b{}; ///< Second body; null = the world (anchor_b is then a world point).
     AnchorDef anchor_a{};
     AnchorDef anchor_b{};
-    double frequency_hz = 30.0; ///< Spring natural frequency [Hz], > 0; capped at 1/(10·h).
-    double damping_ratio = 0.7; ///< [-], ≥ 0.
-    double rest_length = -1.0;  ///< Distance only [m]; < 0 = the anchors' distance at creation.
-    double swing_limit = -1.0;  ///< Point only: max swing from the rest pose [rad]; < 0 = none.
-    double twist_limit = -1.0;  ///< Point only: max twist about the axis [rad]; < 0 = none.
-    Vec3 axis_a{};              ///< Limit axis in a's shape frame; zero = origin → anchor_a.
+    double frequency_hz = 30.0;   ///< Spring natural frequency [Hz], > 0; capped at 1/(10·h).
+    double damping_ratio = 0.7;   ///< [-], ≥ 0.
+    double rest_length = -1.0;    ///< Distance only [m]; < 0 = the anchors' distance at creation.
+    double swing_limit = -1.0;    ///< Point only: max swing from the rest pose [rad]; < 0 = none.
+    double twist_limit = -1.0;    ///< Point only: max twist about the axis [rad]; < 0 = none.
+    Vec3 axis_a{};                ///< Limit axis in a's shape frame; zero = origin → anchor_a.
+    double angular_damping = 0.0; ///< Joint friction [1/s], >= 0: the parts' relative spin decays at this
+                                  ///< rate (integrated implicitly, so any value is stable).
     double break_force = std::numeric_limits<double>::infinity(); ///< [N], > 0; the spring breaks above it.
     bool collide_connected = false; ///< False: a and b do not collide with each other.
 };

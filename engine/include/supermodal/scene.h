@@ -36,13 +36,13 @@ struct SceneBody {
     BodyDef def;
     std::string material; ///< Material name, or empty for the default material.
     DynamicsType dynamics = DynamicsType::Rigid;
-    std::string parent;   ///< Parent body's name, or empty. Then def's pose and velocities are in the
-                          ///< parent's frame (relative to its shape origin), resolved by build_world().
+    std::string parent; ///< Parent body's name, or empty. Then def's pose and velocities are in the
+                        ///< parent's frame (relative to its shape origin), resolved by build_world().
 };
 
 /// One constraint of a scene: its def with the bodies named (b empty = the world).
 struct SceneConstraint {
-    ConstraintDef def;  ///< def.a and def.b are filled in by build_world().
+    ConstraintDef def; ///< def.a and def.b are filled in by build_world().
     std::string body_a;
     std::string body_b;
 };
@@ -50,9 +50,9 @@ struct SceneConstraint {
 struct Scene {
     std::string source; ///< File it came from, or "<string>".
     WorldDef world = default_world_def();
-    double duration = 5.0;              ///< Default run length [s], > 0.
-    std::vector<MaterialDef> materials; ///< In file order.
-    std::vector<SceneBody> bodies;      ///< In file order; creation order in the world.
+    double duration = 5.0;                    ///< Default run length [s], > 0.
+    std::vector<MaterialDef> materials;       ///< In file order.
+    std::vector<SceneBody> bodies;            ///< In file order; creation order in the world.
     std::vector<SceneConstraint> constraints; ///< In file order, created after the bodies.
 };
 

@@ -50,6 +50,8 @@ Status validate(const ConstraintDef& def)
         return Error{"", "frequency", "expected a finite frequency > 0 Hz"};
     if (!(def.damping_ratio >= 0.0) || !std::isfinite(def.damping_ratio))
         return Error{"", "damping_ratio", "expected a finite damping ratio >= 0"};
+    if (!(def.angular_damping >= 0.0) || !std::isfinite(def.angular_damping))
+        return Error{"", "angular_damping", "expected a finite angular damping >= 0 1/s"};
     if (!(def.break_force > 0.0))
         return Error{"", "break_force", "expected a break force > 0 N (or infinity)"};
     if (!std::isfinite(def.rest_length) || !std::isfinite(def.swing_limit) || !std::isfinite(def.twist_limit))

@@ -42,10 +42,10 @@ using ConstraintRegistry = BasicRegistry<ConstraintModel, ConstraintState>;
 
 struct ConstraintWorld {
     ConstraintRegistry reg;
-    uint64_t broken_count = 0; ///< Constraints broken since creation.
-    std::vector<Entity> parent;    ///< Model: parent by child entity index (null = none); see hierarchy.h.
-    int iterations = 4;        ///< Gauss–Seidel passes per substep (WorldDef::constraint_iterations).
-    double max_error = 0.0;    ///< Derived: largest linear error after the last substep [m].
+    uint64_t broken_count = 0;  ///< Constraints broken since creation.
+    std::vector<Entity> parent; ///< Model: parent by child entity index (null = none); see hierarchy.h.
+    int iterations = 4;         ///< Gauss–Seidel passes per substep (WorldDef::constraint_iterations).
+    double max_error = 0.0;     ///< Derived: largest linear error after the last substep [m].
 };
 
 [[nodiscard]] inline Entity to_entity(Constraint c)

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Part hierarchies and run-time part edits (hierarchy.h).
+#include "supermodal/hierarchy.h"
+
 #include "constraints/constraint_world.h"
 #include "core/assert.h"
 #include "supermodal/body.h"
-#include "supermodal/hierarchy.h"
 #include "world/world_impl.h"
 
 #include <algorithm>

@@ -161,6 +161,9 @@ Quat orientation_of(const Side& s)
 
 // Backward-Euler spring–damper coefficients for natural frequency ω and damping ratio ζ over h:
 // the impulse is −m_eff·(mass_scale·(Ċ + bias_rate·C)) − impulse_scale·(impulse so far).
+// Joint limits start acting this far before the limit [rad] (speculatively, see solve_angular).
+constexpr double k_limit_margin = 0.1;
+
 struct Soft {
     double bias_rate = 0.0;     ///< [1/s].
     double mass_scale = 0.0;    ///< [-].
@@ -180,9 +183,10 @@ struct Row {
     Entity id{};
     Side a, b;
     Soft soft{};
-    Vec3 gap{};    ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).
-    Vec3 normal{}; ///< Distance: unit a − b.
-    Mat3 mass{};   ///< Point/weld: K⁻¹ [kg]; distance: m_eff on the diagonal.
+    double h = 0.0; ///< Substep [s].
+    Vec3 gap{};     ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).
+    Vec3 normal{};  ///< Distance: unit a − b.
+    Mat3 mass{};    ///< Point/weld: K⁻¹ [kg]; distance: m_eff on the diagonal.
     bool has_mass = false;
     Vec3 impulse{}; ///< Accumulated linear impulse on a this substep [N·s].
     // Angular parts: weld (3-D) or up to two one-sided limit rows (axis, excess).
@@ -242,9 +246,14 @@ void solve_angular(Row& r)
         const Vec3& axis = r.limit_axis[i];
         const double rate = dot(angular_velocity(r.b) - angular_velocity(r.a), axis);
         // Impulse on b against the axis; accumulated ≥ 0 so the limit pushes back but never pulls.
-        const double want =
-            r.limit_mass[i] * r.soft.mass_scale * (rate + r.soft.bias_rate * r.limit_excess[i]) -
-            r.soft.impulse_scale * r.limit_impulse[i];
+        // Past the limit it is the soft spring; short of it, only the approach that would cross the
+        // limit within this substep is removed (speculative, as for contact), so a joint resting at
+        // its limit does not chatter between free and pushed.
+        const double excess = r.limit_excess[i];
+        const double want = excess > 0.0
+                                ? r.limit_mass[i] * r.soft.mass_scale * (rate + r.soft.bias_rate * excess) -
+                                      r.soft.impulse_scale * r.limit_impulse[i]
+                                : r.limit_mass[i] * (rate + excess / r.h);
         const double total = std::max(0.0, r.limit_impulse[i] + want);
         const double dl = total - r.limit_impulse[i];
         r.limit_impulse[i] = total;
@@ -266,6 +275,20 @@ void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
     apply_row(r, 1.0);
 }
 
+// Joint friction: the relative spin of the two parts decays at `rate_h`/h per second, integrated
+// implicitly (factor rate_h/(1 + rate_h)) so any rate is stable. Without it a ball joint swings freely
+// and a hanging limb rocks for a long time.
+void damp_relative_spin(Row& r, double rate_h)
+{
+    Mat3 inertia;
+    if (!invert(add(r.a.inv_inertia, r.b.inv_inertia), inertia))
+        return;
+    const Vec3 spin = angular_velocity(r.b) - angular_velocity(r.a);
+    const Vec3 l = -(rate_h / (1.0 + rate_h)) * (inertia * spin);
+    push(r.a, Vec3{}, -1.0 * l);
+    push(r.b, Vec3{}, l);
+}
+
 bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
 {
     const ConstraintDef& d = c.def;
@@ -274,6 +297,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
     if (r.a.m == nullptr)
         return false;
     r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
+    r.h = h;
     const Vec3 gap = r.a.point - r.b.point;
     if (d.type == ConstraintType::Distance) {
         const double len = length(gap);
@@ -302,7 +326,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
         double twist = 0.0;
         swing_twist(rel, c.axis_a, swing, twist);
         auto add_limit = [&](int slot, const Vec3& axis_w, double excess) {
-            if (excess <= 0.0)
+            if (excess <= -k_limit_margin)
                 return;
             st.error.angular = std::max(st.error.angular, excess);
             const double k_inv =
@@ -322,6 +346,8 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
                       std::abs(twist) - d.twist_limit);
     }
     warm_start(r, st, d);
+    if (d.angular_damping > 0.0)
+        damp_relative_spin(r, d.angular_damping * h);
     return true;
 }
 

@@ -17,9 +17,9 @@ namespace
 {
 
 const std::vector<std::string_view> k_body_keys = {
-    "name",        "shape",    "material",         "density", "mass",          "position",
-    "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics",
-    "parent"};
+    "name",          "shape",       "material", "density",          "mass",
+    "position",      "orientation", "velocity", "angular_velocity", "motion",
+    "gravity_scale", "dynamics",    "parent"};
 // In ShapeType order, so a choice's index is its enumerator; each type's keys at the same index.
 const std::vector<std::string_view> k_shape_types = {"superquadric", "plane", "hyperquadric"};
 const std::vector<std::vector<std::string_view>> k_shape_keys = {
@@ -289,7 +289,8 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, SceneB
 }
 
 // A parent is an earlier body of the scene: the child's pose is read in the parent's frame.
-void read_parent(Reader& r, const Json& value, const std::string& where, const Scene& scene, SceneBody& out_body)
+void read_parent(Reader& r, const Json& value, const std::string& where, const Scene& scene,
+                 SceneBody& out_body)
 {
     r.read_string(value, where, out_body.parent);
     if (!r.ok())
@@ -300,8 +301,8 @@ void read_parent(Reader& r, const Json& value, const std::string& where, const S
             return;
         names.push_back(b.def.name);
     }
-    r.fail(where, "no earlier body named " + quote_text(out_body.parent) + " (a parent is listed before its children)" +
-                      did_you_mean(out_body.parent, names));
+    r.fail(where, "no earlier body named " + quote_text(out_body.parent) +
+                      " (a parent is listed before its children)" + did_you_mean(out_body.parent, names));
 }
 
 void read_body(Reader& r, const Json& body, const std::string& where, const Scene& scene,

@@ -10,13 +10,21 @@ namespace supermodal::scene_io
 namespace
 {
 
-const std::vector<std::string_view> k_constraint_keys = {"name",        "type",
-                                                         "a",           "b",
-                                                         "anchor_a",    "anchor_b",
-                                                         "frequency",   "damping_ratio",
-                                                         "rest_length", "swing_limit",
-                                                         "twist_limit", "axis_a",
-                                                         "break_force", "collide_connected"};
+const std::vector<std::string_view> k_constraint_keys = {"name",
+                                                         "type",
+                                                         "a",
+                                                         "b",
+                                                         "anchor_a",
+                                                         "anchor_b",
+                                                         "frequency",
+                                                         "damping_ratio",
+                                                         "rest_length",
+                                                         "swing_limit",
+                                                         "twist_limit",
+                                                         "axis_a",
+                                                         "break_force",
+                                                         "collide_connected",
+                                                         "angular_damping"};
 const std::vector<std::string_view> k_constraint_types = {"point", "distance", "weld"};
 const std::vector<std::string_view> k_anchor_keys = {"point", "direction", "surface"};
 
@@ -108,6 +116,7 @@ void read_constraint(Reader& r, const Json& value, const std::string& where, con
     r.field_number(value, where, "twist_limit", closed(0.0, M_PI), d.twist_limit);
     r.field_vec3(value, where, "axis_a", any_number(), d.axis_a);
     r.field_number(value, where, "break_force", above(0.0), d.break_force);
+    r.field_number(value, where, "angular_damping", at_least(0.0), d.angular_damping);
     if (const Json* cc = r.member(value, "collide_connected")) {
         if (!cc->is_boolean())
             return r.fail(pointer_join(where, "collide_connected"),

@@ -9,12 +9,12 @@
 #include "supermodal/hierarchy.h"
 #include "supermodal/scene.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
-#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -24,10 +24,11 @@ namespace
 {
 
 using scene_io::Json;
-using scene_io::Reader;
 using scene_io::pointer_join;
+using scene_io::Reader;
 
-const std::vector<std::string_view> k_top_keys = {"settings", "materials", "include", "bodies", "constraints"};
+const std::vector<std::string_view> k_top_keys = {"settings", "materials", "include", "bodies",
+                                                  "constraints"};
 const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
@@ -150,13 +151,14 @@ Result<Scene> read_scene(const Json& root, const std::string& source, IncludeCon
 
 bool same_material(const MaterialDef& a, const MaterialDef& b)
 {
-    return a.density == b.density && a.young == b.young && a.poisson == b.poisson && a.friction == b.friction &&
-           a.restitution == b.restitution && a.damping_ratio == b.damping_ratio && a.yield_stress == b.yield_stress;
+    return a.density == b.density && a.young == b.young && a.poisson == b.poisson &&
+           a.friction == b.friction && a.restitution == b.restitution && a.damping_ratio == b.damping_ratio &&
+           a.yield_stress == b.yield_stress;
 }
 
 // Appends an included scene: names get the prefix, root bodies and world anchors the transform.
-void merge_included(Reader& r, const std::string& where, Scene&& part, const std::string& prefix, const Vec3& t,
-                    const Quat& q, Scene& out_scene)
+void merge_included(Reader& r, const std::string& where, Scene&& part, const std::string& prefix,
+                    const Vec3& t, const Quat& q, Scene& out_scene)
 {
     for (MaterialDef& m : part.materials) {
         const auto same_name = [&](const MaterialDef& o) { return o.name == m.name; };
@@ -165,7 +167,8 @@ void merge_included(Reader& r, const std::string& where, Scene&& part, const std
             out_scene.materials.push_back(m);
         else if (!same_material(*it, m))
             return r.fail(pointer_join(where, "file"), "material " + scene_io::quote_text(m.name) + " in " +
-                                                           part.source + " differs from the one already defined");
+                                                           part.source +
+                                                           " differs from the one already defined");
     }
     for (SceneBody& b : part.bodies) {
         b.def.name = prefix + b.def.name;
@@ -195,7 +198,8 @@ void merge_included(Reader& r, const std::string& where, Scene&& part, const std
     }
 }
 
-void read_include(Reader& r, const Json& item, const std::string& where, IncludeContext& ctx, Scene& out_scene)
+void read_include(Reader& r, const Json& item, const std::string& where, IncludeContext& ctx,
+                  Scene& out_scene)
 {
     if (!r.check_object(item, where, k_include_keys))
         return;
@@ -221,7 +225,8 @@ void read_include(Reader& r, const Json& item, const std::string& where, Include
     if (std::find(ctx.open_files.begin(), ctx.open_files.end(), key) != ctx.open_files.end())
         return r.fail(pointer_join(where, "file"), "include cycle: " + path.string() + " includes itself");
     if (ctx.open_files.size() >= k_max_include_depth)
-        return r.fail(pointer_join(where, "file"), "includes nest deeper than " + std::to_string(k_max_include_depth));
+        return r.fail(pointer_join(where, "file"),
+                      "includes nest deeper than " + std::to_string(k_max_include_depth));
     Result<std::string> text = read_file(path.string());
     if (!text)
         return r.fail(pointer_join(where, "file"), text.error().what + " (" + path.string() + ")");
@@ -312,7 +317,8 @@ void place_in_parent(const World& world, Entity parent, BodyDef& def)
     const Quat q = body_orientation(world, parent);
     const Vec3 position = origin + rotate(q, def.position);
     const Vec3 w = body_angular_velocity(world, parent);
-    const Vec3 v = body_linear_velocity(world, parent) + cross(w, position - body_center_of_mass(world, parent));
+    const Vec3 v =
+        body_linear_velocity(world, parent) + cross(w, position - body_center_of_mass(world, parent));
     def.position = position;
     def.orientation = normalized(q * normalized(def.orientation));
     def.linear_velocity = v + rotate(q, def.linear_velocity);

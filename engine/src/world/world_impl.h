@@ -31,6 +31,7 @@ struct World::Impl {
 /// Mass, inverse mass and inertia of a body from its shape and density (zero inverses unless dynamic).
 void set_mass_model(BodyModel& model, const ShapeDef& shape, double density);
 /// The shared contact model for a shape whose centre of mass is `com` (shape frame) [m].
-[[nodiscard]] std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com);
+[[nodiscard]] std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape,
+                                                           const Vec3& com);
 
 } // namespace supermodal
