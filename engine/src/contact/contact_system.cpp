@@ -2,6 +2,7 @@
 #include "contact/contact_system.h"
 
 #include "dynamics/integrate.h"
+#include "modal/modal_world.h"
 
 #include <algorithm>
 #include <cmath>
@@ -234,6 +235,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
             io.torque[pair.a.index] += cross(cp.point - pa.position, fv);
             io.force[pair.b.index] -= fv;
             io.torque[pair.b.index] -= cross(cp.point - pb.position, fv);
+            modal_add_point_load(reg, pair.a, cp.point, fv); // deforms modal bodies; no-op for rigid
+            modal_add_point_load(reg, pair.b, cp.point, -fv);
             total += fv;
             normal_force += f;
             deepest = std::max(deepest, cp.depth);
@@ -262,6 +265,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         io.torque[pair.a.index] += cross(centroid - pa.position, ft);
         io.force[pair.b.index] -= ft;
         io.torque[pair.b.index] -= cross(centroid - pb.position, ft);
+        modal_add_point_load(reg, pair.a, centroid, ft);
+        modal_add_point_load(reg, pair.b, centroid, -ft);
         // Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
         // friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the
         // patch's second moment). Without it a single friction anchor lets a resting face spin up.

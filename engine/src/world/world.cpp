@@ -4,6 +4,7 @@
 #include "contact/contact_system.h"
 #include "core/assert.h"
 #include "dynamics/integrate.h"
+#include "modal/modal_world.h"
 #include "world/world_impl.h"
 
 #include <chrono>
@@ -101,13 +102,14 @@ void World::Impl::step()
         run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, contact); });
         run(Stage::PenaltyForces, [&] { apply_penalty_forces(def, ctx, reg, contact, warnings); });
-        run(Stage::ModalUpdate, [] {});
+        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
-        run(Stage::UpdateSurfaces, [] {});
+        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg); });
     }
     run(Stage::Events, [&] {
         freeze_non_finite(reg, warnings);
         clear_forces(reg);
+        clear_modal_forces(reg);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;
