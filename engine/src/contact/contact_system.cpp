@@ -216,7 +216,9 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         const Vec3 ra = centroid - pa.position, rb = centroid - pb.position;
         // Effective masses at the contact, rotation included, so a push off the centre of mass (an edge,
         // a corner) gets a spring its own inertia can carry at this substep.
-        const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n));
+        const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) +
+                                    modal_inverse_mass(reg, pair.a, centroid, n, ctx.h) +
+                                    modal_inverse_mass(reg, pair.b, centroid, n, ctx.h)); // modes are lighter
         const double zeta = def.contact.damping_ratio >= 0.0
                                 ? def.contact.damping_ratio
                                 : zeta_cache.get(std::max(ma.restitution, mb.restitution));
@@ -251,7 +253,9 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         }
         const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
         const Vec3 v_t = v_rel - dot(v_rel, n) * n;
-        const double m_t = 1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}));
+        const double m_t = 1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) +
+                                  modal_inverse_mass(reg, pair.a, centroid, {}, ctx.h) +
+                                  modal_inverse_mass(reg, pair.b, centroid, {}, ctx.h));
         const double omega_t = k_tangential_frequency_ratio * omega;
         const double kt = m_t * omega_t * omega_t;
         const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;

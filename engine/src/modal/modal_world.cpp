@@ -128,6 +128,34 @@ void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const
         add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->host_force);
 }
 
+double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, const Vec3& d, double h)
+{
+    const ModalBody* b = reg.find<ModalBody>(e);
+    if (b == nullptr)
+        return 0.0;
+    const Pose& p = reg.get<Pose>(e);
+    const Vec3 local =
+        inv_rotate(p.orientation, world_point - p.position) + reg.get<BodyModel>(e).mass.center_of_mass;
+    const Vec3 dl = inv_rotate(p.orientation, d);
+    if (!is_finite(local) || !is_finite(dl))
+        return 0.0;
+    const ModalBasis& basis = *b->basis;
+    const size_t r = static_cast<size_t>(basis.mode_count);
+    const LatticeWeights lw = modal_weights(basis, local);
+    double sum = 0.0;
+    for (size_t k = 0; k < r; ++k) {
+        Vec3 phi{};
+        for (int j = 0; j < lw.count; ++j) {
+            const double* node = &basis.mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
+            phi += lw.weights[j] * Vec3{node[k], node[r + k], node[2 * r + k]};
+        }
+        const double half = 0.5 * b->omega[k] * h;
+        const double sinc = half > 1e-4 ? std::sin(half) / half : 1.0; // 1 − half²/6: exact below 1e-4
+        sum += (d == Vec3{} ? dot(phi, phi) : dot(phi, dl) * dot(phi, dl)) * sinc * sinc;
+    }
+    return sum;
+}
+
 void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, const Vec3& impulse)
 {
     if (ModalBody* b = reg.find<ModalBody>(e))
