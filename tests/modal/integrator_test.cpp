@@ -162,6 +162,7 @@ TEST(ModalIntegrator, DampedCentralDifferenceDecaysAtZetaOmega)
         sm::modal::central_difference_step(omega, zeta, h, 0.0, q, v);
     const double energy = 0.5 * (v * v + omega * omega * q * q);
     const double rate = -std::log(energy / (0.5 * omega * omega)) / (2.0 * steps * h);
-    // The energy phase oscillates within ±ζ (relative) about its envelope: 2% plus the O((ωh)²) error.
-    EXPECT_NEAR(rate, zeta * omega, 0.03 * zeta * omega);
+    // The energy oscillates within about ±ζ about its envelope, which shifts the fitted rate by
+    // ζ/(2ζωt) = 0.05%; the scheme's own error is O((ωh)²) = 4e-4. 0.5% covers both (measured −2.6e-4).
+    EXPECT_NEAR(rate, zeta * omega, 0.005 * zeta * omega);
 }
