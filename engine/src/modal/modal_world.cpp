@@ -194,6 +194,7 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
             ++io_warnings.modal_non_finite;
         }
         std::fill(b.load.begin(), b.load.end(), 0.0);
+        b.surface_stale = true;
     });
 }
 
@@ -227,11 +228,17 @@ void update_modal_surface(ModalBody& b)
     const double grow = std::sqrt(max_u2);
     const Aabb& rest_box = b.surface->rest->local_box;
     b.collider->local_box = {rest_box.min - Vec3{grow, grow, grow}, rest_box.max + Vec3{grow, grow, grow}};
+    b.surface_stale = false;
 }
 
-void update_modal_surfaces(Registry& reg)
+void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs)
 {
-    reg.each<ModalBody>([](Entity, ModalBody& b) { update_modal_surface(b); });
+    if (reg.store<ModalBody>().size() == 0)
+        return;
+    for (const BodyPair& pair : pairs)
+        for (Entity e : {pair.a, pair.b})
+            if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->surface_stale)
+                update_modal_surface(*b);
 }
 
 void clear_modal_forces(Registry& reg)

@@ -4,10 +4,12 @@
 // and loads are rotated into it before they are projected on the modes.
 #pragma once
 
+#include "contact/broadphase.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
 #include <memory>
+#include <span>
 
 namespace supermodal
 {
@@ -42,8 +44,10 @@ void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, c
 /// ModalUpdate stage: steps every modal body's amplitudes over ctx.h under this substep's loads and the
 /// host loads, then clears the substep's loads.
 void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
-/// UpdateSurfaces stage: moves every modal body's contact samples by its current amplitudes.
-void update_modal_surfaces(Registry& reg);
+/// UpdateSurfaces stage: moves the contact samples of the modal bodies in `pairs` (the only ones the
+/// narrowphase will read) by their current amplitudes, if these moved since. Others stay stale until they
+/// join a pair: call it again after the broadphase.
+void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs);
 /// Moves one modal body's samples (after creation, set_body_modal_state, restore).
 void update_modal_surface(ModalBody& body);
 /// Clears host generalized forces once a step has used them.

@@ -80,6 +80,7 @@ struct ModalBody {
     std::shared_ptr<Collider> collider;       ///< This body's collider (BodyModel::collider points to it),
                                               ///< its samples deformed by UpdateSurfaces.
     std::shared_ptr<SampleSet> samples;       ///< The deformed samples it holds.
+    bool surface_stale = false;               ///< q moved since the samples were last deformed.
     double step_h = 0.0;                      ///< Substep the exact step maps below were made for [s].
     std::vector<modal::ModeStep> exact_steps; ///< (r) per-mode exact maps for step_h.
 };

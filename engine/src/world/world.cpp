@@ -93,6 +93,8 @@ void World::Impl::step()
     store_previous_poses(reg);
     int substeps = def.substep_count;
     run(Stage::Broadphase, [&] { substeps = update_pairs(def, reg, contact); });
+    // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -104,7 +106,7 @@ void World::Impl::step()
         run(Stage::PenaltyForces, [&] { apply_penalty_forces(def, ctx, reg, contact, warnings); });
         run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
-        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg); });
+        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
     }
     run(Stage::Events, [&] {
         freeze_non_finite(reg, warnings);
