@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Cost of modal bodies in a world step (docs/modal.md "World integration"): a free 2x4 board vibrating
-// (ModalUpdate + UpdateSurfaces, no contact) for r modes and both integrators, and the same board as a
-// rigid body for the baseline.
+// Cost of modal bodies in a world step (docs/modal.md "Modal bodies in a world"): a free 2x4 board
+// vibrating (ModalUpdate only: no pair, so no surface update) for r modes and both integrators, the board
+// resting on the ground (its samples deformed every substep), and the same board rigid as the baseline.
 #include "supermodal/body.h"
+#include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
 
@@ -59,5 +60,41 @@ BENCHMARK(BM_ModalWorld_BoardStep)
     ->Args({24, 0})
     ->Args({12, 1})
     ->Unit(benchmark::kMicrosecond);
+
+// The board resting on the ground (dt 2 ms, gravity): now in a pair, its samples are deformed every
+// substep. Arg: modes (0 = rigid).
+void BM_ModalWorld_BoardOnGround(benchmark::State& st)
+{
+    const int modes = static_cast<int>(st.range(0));
+    sm::World world(sm::default_world_def());
+    sm::BodyDef ground = sm::default_body_def();
+    ground.shape.type = sm::ShapeType::Plane;
+    ground.shape.plane_normal = {0, 1, 0};
+    ground.motion = sm::MotionType::Static;
+    (void)sm::create_body(world, ground);
+    sm::BodyDef def = board(modes, sm::ModalIntegrator::Exact);
+    def.modal.damping_ratio = 0.05;
+    def.position = {0, 0.019, 0};
+    (void)sm::create_body(world, def);
+    for (int i = 0; i < 200; ++i) // settle
+        world.step();
+    double surface_ms = 0.0, narrow_ms = 0.0, penalty_ms = 0.0, modal_ms = 0.0;
+    for (auto _ : st) {
+        world.step();
+        const sm::StepProfile& p = world.profile();
+        surface_ms += p.stage_ms[static_cast<size_t>(sm::Stage::UpdateSurfaces)];
+        narrow_ms += p.stage_ms[static_cast<size_t>(sm::Stage::Narrowphase)];
+        penalty_ms += p.stage_ms[static_cast<size_t>(sm::Stage::PenaltyForces)];
+        modal_ms += p.stage_ms[static_cast<size_t>(sm::Stage::ModalUpdate)];
+    }
+    const double n = static_cast<double>(st.iterations());
+    st.counters["update_surfaces_us"] = 1e3 * surface_ms / n;
+    st.counters["narrowphase_us"] = 1e3 * narrow_ms / n;
+    st.counters["penalty_us"] = 1e3 * penalty_ms / n;
+    st.counters["modal_update_us"] = 1e3 * modal_ms / n;
+    st.counters["contact_points"] =
+        static_cast<double>(sm::world_contacts(world).empty() ? 0 : sm::world_contacts(world)[0].point_count);
+}
+BENCHMARK(BM_ModalWorld_BoardOnGround)->Arg(0)->Arg(6)->Arg(12)->Arg(24)->Unit(benchmark::kMicrosecond);
 
 } // namespace

@@ -200,8 +200,7 @@ LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape)
         if (pidx[d] != cell[d])
             xi[d] = std::clamp(xi[d] + 2.0 * (cell[d] - pidx[d]), -3.0, 3.0);
     const int per_cell = lattice_nodes_per_cell(lat.order);
-    std::array<double, 3> dn[modal::k_max_cell_nodes];
-    modal::shape_functions(lat.order, xi, w.weights.data(), dn);
+    modal::shape_functions(lat.order, xi, w.weights.data(), nullptr);
     for (int a = 0; a < per_cell; ++a)
         w.nodes[a] = basis.cell_nodes[static_cast<size_t>(proxy) * per_cell + a];
     w.count = per_cell;

@@ -104,6 +104,7 @@ void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasi
     b.q_dot.assign(r, 0.0);
     b.host_force.assign(r, 0.0);
     b.load.assign(r, 0.0);
+    b.nodal_load.assign(basis->node_positions.size() * 3, 0.0);
     b.surface = surface_for(w, m.collider, basis);
     b.basis = std::move(basis);
     // Its own collider and samples: the deformed surface belongs to this body alone. The rest shape's
@@ -118,8 +119,25 @@ void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasi
 
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
 {
-    if (ModalBody* b = reg.find<ModalBody>(e))
-        add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->load);
+    // Lumped on the lattice nodes (3·count multiply-adds) rather than projected on the modes
+    // (3·count·r): a resting body has hundreds of contact points per substep.
+    ModalBody* b = reg.find<ModalBody>(e);
+    if (b == nullptr)
+        return;
+    const Pose& p = reg.get<Pose>(e);
+    const Vec3 local =
+        inv_rotate(p.orientation, world_point - p.position) + reg.get<BodyModel>(e).mass.center_of_mass;
+    const Vec3 fl = inv_rotate(p.orientation, world_force);
+    if (!is_finite(local) || !is_finite(fl))
+        return;
+    const LatticeWeights lw = modal_weights(*b->basis, local);
+    for (int j = 0; j < lw.count; ++j) {
+        double* f = &b->nodal_load[static_cast<size_t>(lw.nodes[j]) * 3];
+        f[0] += lw.weights[j] * fl.x;
+        f[1] += lw.weights[j] * fl.y;
+        f[2] += lw.weights[j] * fl.z;
+    }
+    b->has_nodal_load = true;
 }
 
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
@@ -172,6 +190,19 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
             for (size_t k = 0; k < r; ++k)
                 b.exact_steps[k] = modal::exact_mode_step(b.omega[k], b.damping_ratio, h);
             b.step_h = h;
+        }
+        if (b.has_nodal_load) {
+            // Q = Φᵀ f over the nodes that carry load.
+            const double* phi = b.basis->mode_shapes.data();
+            for (size_t i = 0; i < b.nodal_load.size(); ++i, phi += r) {
+                const double f = b.nodal_load[i];
+                if (f == 0.0)
+                    continue;
+                for (size_t k = 0; k < r; ++k)
+                    b.load[k] += phi[k] * f;
+            }
+            std::fill(b.nodal_load.begin(), b.nodal_load.end(), 0.0);
+            b.has_nodal_load = false;
         }
         bool switched = false;
         for (size_t k = 0; k < r; ++k) {

@@ -76,7 +76,10 @@ struct ModalBody {
     std::vector<double> host_force; ///< (r) generalized host forces for the next step [N/√kg]; cleared
                                     ///< after each step, like ForceAccumulator.
     // Derived and scratch.
-    std::vector<double> load;                 ///< (r) contact generalized forces of this substep [N/√kg].
+    std::vector<double> load;       ///< (r) contact generalized forces of this substep [N/√kg].
+    std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the
+                                    ///< nodes [N], body frame; projected on the modes once per substep.
+    bool has_nodal_load = false;
     std::shared_ptr<Collider> collider;       ///< This body's collider (BodyModel::collider points to it),
                                               ///< its samples deformed by UpdateSurfaces.
     std::shared_ptr<SampleSet> samples;       ///< The deformed samples it holds.
