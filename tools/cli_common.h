@@ -47,4 +47,12 @@ struct InspectOptions {
 };
 int inspect_command(const InspectOptions& options);
 
+struct ModesOptions {
+    std::string scene;
+    std::string body;
+    int count = 0; ///< 0: every mode the body keeps.
+    bool json = false;
+};
+int modes_command(const ModesOptions& options);
+
 } // namespace supermodal::cli

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `supermodal inspect`: per-body mass properties and bounds of a scene, without stepping it.
 #include "cli_common.h"
+#include "supermodal/modal.h"
 
 #include <cmath>
 #include <cstdio>
@@ -62,8 +63,9 @@ int inspect_command(const InspectOptions& opt)
              {"center_of_mass", to_json(body_position(world, b) + mp.center_of_mass)},
              {"inertia_diagonal", dynamic ? to_json(mp.inertia_diagonal) : nlohmann::json(nullptr)},
              {"bounds", bounds_json(world, b)},
-             {"dynamics", "rigid"},
-             {"modes", nlohmann::json::array()}});
+             {"dynamics", body_modal_basis(world, b) ? "modal" : "rigid"},
+             {"modes", body_modal_basis(world, b) ? nlohmann::json(body_modal_basis(world, b)->frequencies_hz)
+                                                  : nlohmann::json::array()}});
     }
     const nlohmann::json out = {{"scene", opt.scene},
                                 {"dt", world.settings().dt},

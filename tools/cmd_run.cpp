@@ -191,7 +191,9 @@ int run_command(const RunOptions& opt)
           {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
         {"warnings",
          {{"non_finite_bodies", world.warnings().non_finite_bodies},
-          {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks}}},
+          {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks},
+          {"modal_integrator_switches", world.warnings().modal_integrator_switches},
+          {"modal_non_finite", world.warnings().modal_non_finite}}},
         {"constraints", constraint_summary(world, peak_constraint_error)},
         {"bodies", bodies}};
 

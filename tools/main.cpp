@@ -36,6 +36,15 @@ int main(int argc, char** argv)
     inspect_cmd->add_option("scene", inspect.scene, "Scene file")->required();
     inspect_cmd->add_flag("--json", inspect.json, "Machine-readable output");
 
+    cli::ModesOptions modes;
+    CLI::App* modes_cmd = app.add_subcommand(
+        "modes", "List a modal body's vibration modes: frequencies, kind guesses, residuals, build cost");
+    modes_cmd->add_option("scene", modes.scene, "Scene file")->required();
+    modes_cmd->add_option("--body", modes.body, "Name of a body with \"dynamics\": {\"type\": \"modal\"}")
+        ->required();
+    modes_cmd->add_option("--count", modes.count, "Show only the lowest K modes")->check(CLI::PositiveNumber);
+    modes_cmd->add_flag("--json", modes.json, "Machine-readable output");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -53,6 +62,8 @@ int main(int argc, char** argv)
             return cli::run_command(run);
         if (inspect_cmd->parsed())
             return cli::inspect_command(inspect);
+        if (modes_cmd->parsed())
+            return cli::modes_command(modes);
     } catch (const std::exception& e) {
         cli::print_error(std::string("internal error: ") + e.what());
         return cli::k_exit_internal;

@@ -367,13 +367,11 @@ TEST(SceneLoader, ConstraintsBuildIntoTheWorld)
     EXPECT_EQ(sm::world_constraints(*world).size(), 2u);
 }
 
-TEST(SceneLoaderErrors, ModalDynamicsAreRefused)
+TEST(SceneLoaderErrors, DynamicsErrors)
 {
-    EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "modal", "modes": 12, "lattice": [8, 2, 2]},)"),
-                         "/bodies/0/dynamics/type",
-                         "modal dynamics are not implemented yet (issue #6); use \"rigid\""));
+    // Modal scenes themselves are tested in modal_scene_test.cpp.
     EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "auto"},)"), "/bodies/0/dynamics/type",
-                         "not implemented yet (issue #6)"));
+                         "not implemented yet"));
     EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "rigid", "modes": 0},)"),
                          "/bodies/0/dynamics/modes", "expected an integer"));
 }

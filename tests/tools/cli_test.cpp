@@ -131,6 +131,30 @@ TEST(Cli, InspectReportsMassProperties)
     EXPECT_NEAR(b["inertia_diagonal"][1].get<double>(), m * 10.0 / 5.0, 1e-9 * m);
 }
 
+TEST(Cli, ModesListsTheBoardsFrequencies)
+{
+    const Outcome o = run_cli("modes " + scene("modal_board.json") + " --body board --count 4 --json");
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json j = nlohmann::json::parse(o.output);
+    ASSERT_EQ(j["frequencies_hz"].size(), 4u);
+    ASSERT_EQ(j["kinds"].size(), 4u);
+    // The first mode is flatwise bending: within 3% of Euler–Bernoulli's 193.1 Hz (docs/modal.md).
+    EXPECT_NEAR(j["frequencies_hz"][0].get<double>(), 193.12, 0.03 * 193.12);
+    EXPECT_EQ(j["kinds"][0], "bend");
+    for (size_t k = 1; k < 4; ++k)
+        EXPECT_GE(j["frequencies_hz"][k].get<double>(), j["frequencies_hz"][k - 1].get<double>());
+    // Rayleigh–Ritz on K and M leaves residuals at round-off level.
+    for (const auto& r : j["residuals"])
+        EXPECT_LT(r.get<double>(), 1e-8);
+    EXPECT_EQ(j["lattice"]["cells"], nlohmann::json::array({8, 1, 1}));
+    EXPECT_GT(j["build_seconds"].get<double>(), 0.0);
+
+    const Outcome rigid = run_cli("modes " + scene("modal_board.json") + " --body ball");
+    EXPECT_EQ(rigid.status, 2);
+    EXPECT_NE(rigid.output.find("is rigid"), std::string::npos) << rigid.output;
+    EXPECT_EQ(run_cli("modes " + scene("modal_board.json") + " --body nobody").status, 2);
+}
+
 TEST(Cli, UsageErrorsExitTwo)
 {
     EXPECT_EQ(run_cli("run").status, 2);

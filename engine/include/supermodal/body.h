@@ -8,6 +8,7 @@
 #include "supermodal/result.h"
 #include "supermodal/shape.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -25,6 +26,27 @@ enum class MotionType : uint8_t {
     Dynamic,   ///< Moves under forces.
 };
 
+/// How a modal body's amplitudes are stepped (DESIGN.md §4 "Modal dynamics").
+enum class ModalIntegrator : uint8_t {
+    Exact,             ///< Exact per-mode solution for a force held over the (sub)step; any step size.
+    CentralDifference, ///< The paper's explicit scheme; stable for h·ω < 2: modes past it are stepped
+                       ///< exactly instead and counted in StepWarnings::modal_integrator_switches.
+};
+
+/// Deformation through the body's lowest free vibration modes (Williams & Pentland 1992). The rigid
+/// motion stays in the body; the modes ride in its co-rotating frame. Dynamic superquadrics and
+/// hyperquadrics only. The basis (engine/include/supermodal/modal.h) is built once per distinct
+/// shape + material + lattice + mode count and shared by every such body of the world.
+struct ModalBodyDef {
+    bool enabled = false;         ///< False: a rigid body (the other fields are ignored).
+    int mode_count = 12;          ///< Elastic modes kept, r ∈ [1, 256].
+    std::array<int, 3> lattice{}; ///< Lattice cells per axis, each in [0, 128]; 0 = from the aspect ratio.
+    ModalIntegrator integrator = ModalIntegrator::Exact;
+    double damping_ratio = 0.01; ///< ζ of every mode [-], ≥ 0 (1 = critical).
+    double young = 1e9;          ///< Young's modulus E [Pa], > 0. Density is BodyDef::density.
+    double poisson = 0.3;        ///< Poisson's ratio ν [-], in (−1, 0.5).
+};
+
 /// How to make a body. Start from default_body_def() and change what differs.
 struct BodyDef {
     std::string name; ///< Optional; unique names are looked up by find_body().
@@ -39,16 +61,19 @@ struct BodyDef {
     double gravity_scale = 1.0;          ///< Multiplies the world's gravity [-].
     double friction = 0.5;               ///< Coulomb coefficient [-], ≥ 0; a pair uses √(μa·μb).
     double restitution = 0.2;            ///< [-], in [0, 1]; a pair uses the larger of the two.
+    ModalBodyDef modal{};                ///< Deformation; rigid unless modal.enabled.
 };
 
 /// The documented starting point: a dynamic water-density sphere of radius 0.5 m at the origin.
 [[nodiscard]] BodyDef default_body_def();
 
-/// Checks the shape, density > 0, finite pose and velocities, a non-zero orientation, and that planes
-/// are static.
+/// Checks the shape, density > 0, finite pose and velocities, a non-zero orientation, that planes
+/// are static, and for modal bodies the ModalBodyDef ranges and a dynamic motion.
 [[nodiscard]] Status validate(const BodyDef& def);
 
-/// Creates a body; asserts validate(def). In Release a refused def returns a null Entity.
+/// Creates a body; asserts validate(def). In Release a refused def returns a null Entity. A modal body
+/// builds (or reuses) its basis here; if that build fails, the body is refused the same way: call
+/// modal_basis_for() first to get the reason.
 [[nodiscard]] Entity create_body(World& world, const BodyDef& def);
 /// Destroys a body; its handle (and every copy) becomes stale.
 void destroy_body(World& world, Entity body);
@@ -87,12 +112,15 @@ void set_body_angular_velocity(World& world, Entity body, const Vec3& angular_ve
 
 /// Adds a force [N] at a point [m] (both world frame) for the next step; the force also makes a
 /// torque about the centre of mass. Forces are cleared after each step. Ignored for non-dynamic bodies.
+/// On a modal body it also loads the modes: φ(point)ᵀ Rᵀ force, mapped at the pose of this call.
 void apply_force(World& world, Entity body, const Vec3& force, const Vec3& point);
-/// Adds a force [N], world frame, through the centre of mass for the next step.
+/// Adds a force [N], world frame, through the centre of mass for the next step; a body force like
+/// gravity, so it does not deform a modal body.
 void apply_force_at_center(World& world, Entity body, const Vec3& force);
 /// Adds a torque [N·m], world frame, for the next step.
 void apply_torque(World& world, Entity body, const Vec3& torque);
-/// Changes momentum at once by an impulse [N·s] at a point [m], world frame.
+/// Changes momentum at once by an impulse [N·s] at a point [m], world frame; on a modal body also the
+/// modal rates, q̇ += φ(point)ᵀ Rᵀ impulse.
 void apply_linear_impulse(World& world, Entity body, const Vec3& impulse, const Vec3& point);
 /// Changes angular momentum at once by an angular impulse [N·m·s], world frame.
 void apply_angular_impulse(World& world, Entity body, const Vec3& impulse);

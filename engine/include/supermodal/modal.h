@@ -9,6 +9,8 @@
 // 1/√kg and the modal amplitudes q have units √kg·m; each mode obeys q̈ + 2ζω q̇ + ω² q = φᵀ f.
 #pragma once
 
+#include "supermodal/body.h"
+#include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
 #include "supermodal/shape.h"
@@ -94,6 +96,7 @@ struct ModalDiagnostics {
     int aggregated_cell_count = 0; ///< Slivers (cut cells too thinly sampled to integrate alone)
                                    ///< merged into a neighbour whose field extends over them.
     int dropped_sliver_count = 0;  ///< Slivers with no neighbour to merge into: material lost.
+    std::vector<double> mode_residuals; ///< (r) ‖Kφ − ω²Mφ‖ / ‖Kφ‖ of each kept mode on the lattice [-].
     double assembly_seconds = 0.0; ///< Lattice, quadrature and sparse assembly [s].
     double eigen_seconds = 0.0;    ///< Eigensolver, orthonormalisation, classification [s].
 };
@@ -163,5 +166,32 @@ class ModalBasisCache
     mutable std::mutex m_mutex;
     std::map<std::string, std::shared_ptr<const ModalBasis>> m_entries;
 };
+
+// ---- Modal bodies in a world (BodyDef::modal) ----------------------------------------------------------
+
+class World;
+
+/// The basis a modal BodyDef will use in `world`: built now, or found in the world's cache. create_body
+/// calls the same; call this first to learn why a build fails (too many modes for the lattice, a
+/// lattice too coarse to hold the body together). Errors for rigid or invalid defs too.
+[[nodiscard]] Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const BodyDef& def);
+
+/// A modal body's basis, or null for a rigid body.
+[[nodiscard]] const ModalBasis* body_modal_basis(const World& world, Entity body);
+
+/// Modal amplitudes and their rates; empty for a rigid body.
+struct BodyModalState {
+    std::vector<double> amplitudes; ///< (r) q [√kg·m].
+    std::vector<double> velocities; ///< (r) q̇ [√kg·m/s]; with central difference, half a step behind q.
+};
+[[nodiscard]] BodyModalState body_modal_state(const World& world, Entity body);
+/// Sets a modal body's amplitudes and rates (both of its mode count, finite); its surface follows.
+Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
+                            std::span<const double> velocities);
+/// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² q²) [J]; 0 for a rigid body.
+[[nodiscard]] double body_modal_energy(const World& world, Entity body);
+/// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
+/// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).
+[[nodiscard]] Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);
 
 } // namespace supermodal

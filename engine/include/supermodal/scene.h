@@ -28,7 +28,8 @@ struct MaterialDef {
     double yield_stress = std::numeric_limits<double>::infinity(); ///< von Mises yield [Pa], > 0.
 };
 
-/// How a scene body deforms; only rigid bodies run until the modal issue lands.
+/// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto
+/// (refused for now: it needs the accuracy estimate of issue #6 item 4).
 enum class DynamicsType : uint8_t { Rigid, Modal, Auto };
 
 /// One body of a scene: its BodyDef plus the scene-level fields.

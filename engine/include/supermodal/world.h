@@ -60,11 +60,14 @@ struct StepProfile {
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.
 struct StepWarnings {
-    uint64_t non_finite_bodies = 0;        ///< Bodies frozen because their state turned NaN/Inf.
-    Entity last_non_finite{};              ///< The last body frozen for that reason.
-    uint64_t gyroscopic_fallbacks = 0;     ///< Spins too fast for the implicit midpoint solve (see docs).
-    uint64_t contact_frequency_clamps = 0; ///< Pairs whose requested contact frequency exceeded 1/(10 h).
-    uint64_t speculative_substeps = 0;     ///< Extra substeps added so fast bodies cannot tunnel.
+    uint64_t non_finite_bodies = 0;         ///< Bodies frozen because their state turned NaN/Inf.
+    Entity last_non_finite{};               ///< The last body frozen for that reason.
+    uint64_t gyroscopic_fallbacks = 0;      ///< Spins too fast for the implicit midpoint solve (see docs).
+    uint64_t contact_frequency_clamps = 0;  ///< Pairs whose requested contact frequency exceeded 1/(10 h).
+    uint64_t speculative_substeps = 0;      ///< Extra substeps added so fast bodies cannot tunnel.
+    uint64_t modal_integrator_switches = 0; ///< Body-substeps in which central difference was unstable
+                                            ///< (ω·h ≥ 2) for some modes, which were stepped exactly.
+    uint64_t modal_non_finite = 0;          ///< Modal bodies whose amplitudes turned NaN/Inf: reset to rest.
 };
 
 /// A saved copy of the world's dynamic state. Treat as opaque; restore() it into the same world.
@@ -86,6 +89,7 @@ struct Snapshot {
     std::vector<uint64_t> manifold_keys;
     std::vector<int> manifold_counts;
     std::vector<Vec3> manifold_points;
+    std::vector<double> modal_values;  ///< Modal bodies in index order: amplitudes, rates, host forces.
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

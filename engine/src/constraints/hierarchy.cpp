@@ -98,6 +98,8 @@ Status set_body_shape(World& world, Entity body, const ShapeDef& shape)
         return Error{"", "shape", "stale or null body handle"};
     if (Status s = validate(shape); !s)
         return s;
+    if (w.reg.has<ModalBody>(body))
+        return Error{"", "shape", "a modal body cannot be reshaped yet (its modes would need rebuilding)"};
     BodyModel& m = w.reg.get<BodyModel>(body);
     if ((m.shape.type == ShapeType::Plane) != (shape.type == ShapeType::Plane))
         return Error{"", "shape/type", "a plane cannot become a solid or the other way round"};

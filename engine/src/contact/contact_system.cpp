@@ -2,6 +2,7 @@
 #include "contact/contact_system.h"
 
 #include "dynamics/integrate.h"
+#include "modal/modal_world.h"
 
 #include <algorithm>
 #include <cmath>
@@ -251,7 +252,9 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         const Vec3 ra = centroid - pa.position, rb = centroid - pb.position;
         // Effective masses at the contact, rotation included, so a push off the centre of mass (an edge,
         // a corner) gets a spring its own inertia can carry at this substep.
-        const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n));
+        const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) +
+                                    modal_inverse_mass(reg, pair.a, centroid, n, ctx.h) +
+                                    modal_inverse_mass(reg, pair.b, centroid, n, ctx.h)); // modes are lighter
         const double zeta = def.contact.damping_ratio >= 0.0
                                 ? def.contact.damping_ratio
                                 : zeta_cache.get(std::max(ma.restitution, mb.restitution));
@@ -275,6 +278,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
             io.torque[pair.a.index] += cross(cp.point - pa.position, fv);
             io.force[pair.b.index] -= fv;
             io.torque[pair.b.index] -= cross(cp.point - pb.position, fv);
+            modal_add_point_load(reg, pair.a, cp.point, fv); // deforms modal bodies; no-op for rigid
+            modal_add_point_load(reg, pair.b, cp.point, -fv);
             total += fv;
             normal_force += f;
             deepest = std::max(deepest, cp.depth);
@@ -289,7 +294,9 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         }
         const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
         const Vec3 v_t = v_rel - dot(v_rel, n) * n;
-        const double m_t = 1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}));
+        const double m_t = 1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) +
+                                  modal_inverse_mass(reg, pair.a, centroid, {}, ctx.h) +
+                                  modal_inverse_mass(reg, pair.b, centroid, {}, ctx.h));
         const double omega_t = k_tangential_frequency_ratio * omega;
         const double kt = m_t * omega_t * omega_t;
         const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;
@@ -303,6 +310,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         io.torque[pair.a.index] += cross(centroid - pa.position, ft);
         io.force[pair.b.index] -= ft;
         io.torque[pair.b.index] -= cross(centroid - pb.position, ft);
+        modal_add_point_load(reg, pair.a, centroid, ft);
+        modal_add_point_load(reg, pair.b, centroid, -ft);
         // Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
         // friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the
         // patch's second moment). Without it a single friction anchor lets a resting face spin up.

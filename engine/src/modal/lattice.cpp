@@ -57,19 +57,23 @@ void shape_functions(int order, const std::array<double, 3>& xi, double* n_out, 
         }
         if (order == 1) {
             n_out[a] = 0.125 * f[0] * f[1] * f[2];
-            dn_out[a] = {0.125 * df[0] * f[1] * f[2], 0.125 * f[0] * df[1] * f[2],
-                         0.125 * f[0] * f[1] * df[2]};
+            if (dn_out != nullptr)
+                dn_out[a] = {0.125 * df[0] * f[1] * f[2], 0.125 * f[0] * df[1] * f[2],
+                             0.125 * f[0] * f[1] * df[2]};
         } else if (mid_axis >= 0) {
             n_out[a] = 0.25 * f[0] * f[1] * f[2];
-            dn_out[a] = {0.25 * df[0] * f[1] * f[2], 0.25 * f[0] * df[1] * f[2], 0.25 * f[0] * f[1] * df[2]};
+            if (dn_out != nullptr)
+                dn_out[a] = {0.25 * df[0] * f[1] * f[2], 0.25 * f[0] * df[1] * f[2],
+                             0.25 * f[0] * f[1] * df[2]};
         } else {
             // Corner: N = ⅛ Π(1 + ξ ξa) · (Σ ξ ξa − 2).
             const double s = xi[0] * c[0] + xi[1] * c[1] + xi[2] * c[2] - 2.0;
             const double p = f[0] * f[1] * f[2];
             n_out[a] = 0.125 * p * s;
-            dn_out[a] = {0.125 * (df[0] * f[1] * f[2] * s + p * c[0]),
-                         0.125 * (f[0] * df[1] * f[2] * s + p * c[1]),
-                         0.125 * (f[0] * f[1] * df[2] * s + p * c[2])};
+            if (dn_out != nullptr)
+                dn_out[a] = {0.125 * (df[0] * f[1] * f[2] * s + p * c[0]),
+                             0.125 * (f[0] * df[1] * f[2] * s + p * c[1]),
+                             0.125 * (f[0] * f[1] * df[2] * s + p * c[2])};
         }
     }
 }

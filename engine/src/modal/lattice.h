@@ -26,7 +26,8 @@ struct CellNodes {
 /// The local node order used everywhere (z slowest, x fastest; order 2 skips face and body centres).
 [[nodiscard]] const CellNodes& cell_nodes_of_order(int order);
 
-/// Shape function values N[a] and natural derivatives dN[a][axis] at ξ, for one element order.
+/// Shape function values N[a] and natural derivatives dN[a][axis] at ξ, for one element order; dn_out
+/// may be null when only the values are needed.
 void shape_functions(int order, const std::array<double, 3>& xi, double* n_out,
                      std::array<double, 3>* dn_out);
 

@@ -3,6 +3,7 @@
 
 #include "geometry/hyperquadric_solve.h"
 #include "scene/did_you_mean.h"
+#include "supermodal/modal.h"
 #include "supermodal/shape.h"
 
 #include <algorithm>
@@ -27,7 +28,12 @@ const std::vector<std::vector<std::string_view>> k_shape_keys = {
 static_assert(static_cast<int>(ShapeType::Plane) == 1 && static_cast<int>(ShapeType::Hyperquadric) == 2);
 const std::vector<std::string_view> k_term_keys = {"normal", "offset", "exponent"};
 const std::vector<std::string_view> k_bend_keys = {"curvature", "angle"};
-const std::vector<std::string_view> k_dynamics_keys = {"type", "modes", "lattice"};
+const std::vector<std::string_view> k_dynamics_keys = {"type", "modes", "lattice", "integrator",
+                                                       "damping_ratio"};
+// In ModalIntegrator order, so a choice's index is its enumerator.
+const std::vector<std::string_view> k_integrator_names = {"exact", "central_difference"};
+static_assert(static_cast<int>(ModalIntegrator::Exact) == 0 &&
+              static_cast<int>(ModalIntegrator::CentralDifference) == 1);
 // Both lists are in enum order, so a choice's index is its enumerator.
 const std::vector<std::string_view> k_motion_names = {"static", "kinematic", "dynamic"};
 const std::vector<std::string_view> k_dynamics_types = {"rigid", "modal", "auto"};
@@ -253,7 +259,15 @@ void read_orientation(Reader& r, const Json& body, const std::string& where, Qua
     out_orientation = {q[0], q[1], q[2], q[3]};
 }
 
-void read_dynamics(Reader& r, const Json& body, const std::string& where, SceneBody& out_body)
+/// The material a body names (already checked by read_density), or the default material.
+MaterialDef material_of(const Scene& scene, const MaterialIndex& materials, const SceneBody& body)
+{
+    const auto it = materials.by_name.find(body.material);
+    return it != materials.by_name.end() ? scene.materials[it->second] : MaterialDef{};
+}
+
+void read_dynamics(Reader& r, const Json& body, const std::string& where, const Scene& scene,
+                   const MaterialIndex& materials, SceneBody& out_body)
 {
     const Json* dynamics = r.member(body, "dynamics");
     if (dynamics == nullptr)
@@ -264,28 +278,41 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, SceneB
     size_t type = 0;
     if (const Json* type_value = r.member(*dynamics, "type"))
         r.read_choice(*type_value, pointer_join(dynamics_where, "type"), k_dynamics_types, type);
-    // modes and lattice are checked now so a scene written for the modal issue fails early and clearly.
-    int mode_count = 1;
-    r.field_int(*dynamics, dynamics_where, "modes", at_least(1.0), mode_count);
+    // Young's modulus, Poisson's ratio and the damping ratio come from the material; the body's own
+    // "damping_ratio" wins over the material's.
+    const MaterialDef material = material_of(scene, materials, out_body);
+    ModalBodyDef& modal = out_body.def.modal;
+    modal.young = material.young;
+    modal.poisson = material.poisson;
+    modal.damping_ratio = material.damping_ratio;
+    r.field_int(*dynamics, dynamics_where, "modes", closed(1.0, k_max_modes), modal.mode_count);
     if (const Json* lattice = r.member(*dynamics, "lattice")) {
         const std::string lattice_where = pointer_join(dynamics_where, "lattice");
         if (!lattice->is_array() || lattice->size() != 3)
-            return r.fail(lattice_where,
-                          "expected an array of 3 integers >= 1, found " + describe_value(*lattice));
-        for (size_t i = 0; i < 3; ++i) {
-            int cells = 1;
-            r.read_int((*lattice)[i], pointer_join(lattice_where, i), at_least(1.0), cells);
-        }
+            return r.fail(lattice_where, "expected an array of 3 integers in [1, " +
+                                             std::to_string(k_max_lattice_cells) + "], found " +
+                                             describe_value(*lattice));
+        for (size_t i = 0; i < 3; ++i)
+            r.read_int((*lattice)[i], pointer_join(lattice_where, i), closed(1.0, k_max_lattice_cells),
+                       modal.lattice[i]);
     }
+    if (const Json* integrator = r.member(*dynamics, "integrator")) {
+        size_t index = 0;
+        r.read_choice(*integrator, pointer_join(dynamics_where, "integrator"), k_integrator_names, index);
+        modal.integrator = static_cast<ModalIntegrator>(index);
+    }
+    r.field_number(*dynamics, dynamics_where, "damping_ratio", at_least(0.0), modal.damping_ratio);
     if (!r.ok())
         return;
     out_body.dynamics = static_cast<DynamicsType>(type);
-    // TODO(#6): build modal bodies; until then run and inspect refuse them rather than run them rigid.
-    if (out_body.dynamics != DynamicsType::Rigid)
-        r.fail(pointer_join(dynamics_where, "type"),
-               std::string(out_body.dynamics == DynamicsType::Auto ? "\"auto\" needs modal dynamics, which"
-                                                                   : "modal dynamics") +
-                   " are not implemented yet (issue #6); use \"rigid\"");
+    const std::string type_where = pointer_join(dynamics_where, "type");
+    if (out_body.dynamics == DynamicsType::Auto)
+        return r.fail(type_where, "\"auto\" (rigid or modal chosen from an error budget) is not implemented "
+                                  "yet; use \"rigid\" or \"modal\"");
+    modal.enabled = out_body.dynamics == DynamicsType::Modal;
+    if (modal.enabled && out_body.def.motion != MotionType::Dynamic)
+        r.fail(type_where, "modal dynamics need a \"dynamic\" body, found motion " +
+                               quote_text(k_motion_names[static_cast<size_t>(out_body.def.motion)]));
 }
 
 // A parent is an earlier body of the scene: the child's pose is read in the parent's frame.
@@ -337,7 +364,7 @@ void read_body(Reader& r, const Json& body, const std::string& where, const Scen
     r.field_number(body, where, "gravity_scale", any_number(), def.gravity_scale);
     if (const Json* parent = r.member(body, "parent"))
         read_parent(r, *parent, pointer_join(where, "parent"), scene, out_body);
-    read_dynamics(r, body, where, out_body);
+    read_dynamics(r, body, where, scene, materials, out_body);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "scene/json_reader.h"
 #include "scene/json_text.h"
 #include "supermodal/hierarchy.h"
+#include "supermodal/modal.h"
 #include "supermodal/scene.h"
 
 #include <algorithm>
@@ -335,9 +336,12 @@ Result<World> build_world(const Scene& scene)
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         const SceneBody& body = scene.bodies[i];
         const std::string where = scene_io::pointer_join("/bodies", i);
-        if (body.dynamics != DynamicsType::Rigid)
+        if (body.dynamics == DynamicsType::Auto)
             return Error{scene.source, where + "/dynamics/type",
-                         "modal dynamics are not implemented yet (issue #6); use \"rigid\""};
+                         "\"auto\" dynamics are not implemented yet; use \"rigid\" or \"modal\""};
+        if ((body.dynamics == DynamicsType::Modal) != body.def.modal.enabled)
+            return Error{scene.source, where + "/dynamics/type",
+                         "dynamics type and BodyDef::modal.enabled disagree"};
         if (Status status = validate(body.def); !status)
             return Error{scene.source, where, "invalid body: " + status.error().message()};
     }
@@ -358,6 +362,12 @@ Result<World> build_world(const Scene& scene)
                 def.friction = m.friction;
                 def.restitution = m.restitution;
             }
+        // A modal basis can fail to build (too many modes for the lattice, a lattice too coarse to hold
+        // the body together): say why before create_body would only refuse.
+        if (def.modal.enabled)
+            if (auto basis = modal_basis_for(world, def); !basis)
+                return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/dynamics",
+                             "cannot build the modal basis: " + basis.error().message()};
         const Entity body = create_body(world, def);
         if (body.is_null())
             return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};

@@ -2,6 +2,7 @@
 #include "supermodal/body.h"
 
 #include "core/assert.h"
+#include "modal/modal_world.h"
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
@@ -105,6 +106,14 @@ Status validate(const BodyDef& def)
         return Error{"", "pose", "expected finite position, orientation, velocities and gravity scale"};
     if (norm(def.orientation) == 0.0)
         return Error{"", "orientation", "orientation quaternion has zero length"};
+    if (def.modal.enabled) {
+        if (def.motion != MotionType::Dynamic)
+            return Error{"", "modal", "modal dynamics need a dynamic body"};
+        if (!(def.modal.damping_ratio >= 0.0) || !std::isfinite(def.modal.damping_ratio))
+            return Error{"", "modal/damping_ratio", "expected a finite damping ratio >= 0"};
+        if (Status s = validate(modal_basis_def(def)); !s)
+            return Error{"", "modal" + s.error().where, s.error().what};
+    }
     return {};
 }
 
@@ -116,6 +125,14 @@ Entity create_body(World& world, const BodyDef& def)
     SM_ASSERT(!w.locked, "bodies cannot be created while the world steps");
     if (!status || w.locked)
         return Entity{};
+    std::shared_ptr<const ModalBasis> basis;
+    if (def.modal.enabled) {
+        Result<std::shared_ptr<const ModalBasis>> built = find_or_build_modal_basis(w, def);
+        SM_ASSERT(built.has_value(), "modal basis build failed (modal_basis_for() gives the reason)");
+        if (!built)
+            return Entity{};
+        basis = std::move(*built);
+    }
     const Entity e = w.reg.create();
     BodyModel model;
     model.name = def.name;
@@ -136,6 +153,8 @@ Entity create_body(World& world, const BodyDef& def)
     w.reg.emplace(e, Velocity{def.motion == MotionType::Static ? Vec3{} : def.linear_velocity,
                               def.motion == MotionType::Static ? Vec3{} : def.angular_velocity});
     w.reg.emplace(e, ForceAccumulator{});
+    if (basis)
+        attach_modal_body(w, e, std::move(basis), def);
     return e;
 }
 
@@ -316,6 +335,7 @@ void apply_force(World& world, Entity e, const Vec3& force, const Vec3& point)
         ForceAccumulator& acc = w->reg.get<ForceAccumulator>(e);
         acc.force += force;
         acc.torque += cross(point - w->reg.get<Pose>(e).position, force);
+        modal_add_host_load(w->reg, e, point, force);
     }
 }
 void apply_force_at_center(World& world, Entity e, const Vec3& force)
@@ -335,6 +355,7 @@ void apply_linear_impulse(World& world, Entity e, const Vec3& impulse, const Vec
         return;
     w->reg.get<Velocity>(e).linear += w->reg.get<BodyModel>(e).inv_mass * impulse;
     apply_angular_impulse(world, e, cross(point - w->reg.get<Pose>(e).position, impulse));
+    modal_add_point_impulse(w->reg, e, point, impulse);
 }
 void apply_angular_impulse(World& world, Entity e, const Vec3& impulse)
 {

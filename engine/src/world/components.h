@@ -4,13 +4,16 @@
 #pragma once
 
 #include "contact/collider.h"
+#include "modal/integrator.h"
 #include "supermodal/body.h"
 #include "supermodal/math.h"
+#include "supermodal/modal.h"
 #include "supermodal/shape.h"
 #include "world/registry.h"
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace supermodal
 {
@@ -61,6 +64,41 @@ struct ForceAccumulator {
     return world_from_body * model.principal;
 }
 
-using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator>;
+/// Model: how a modal basis moves a collider's rest samples, shared by identical modal bodies.
+struct ModalSurface {
+    std::shared_ptr<const Collider> rest;    ///< Rest shape; its samples are in the body frame.
+    std::shared_ptr<const ModalBasis> basis; ///< The basis the displacements come from.
+    std::vector<double> sample_modes;        ///< Per rest sample, (3 × r) body-frame displacement per
+                                             ///< unit amplitude, entry (sample·3 + axis)·r + k [1/√kg].
+};
+
+/// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
+struct ModalBody {
+    // Model.
+    std::shared_ptr<const ModalBasis> basis;
+    std::shared_ptr<const ModalSurface> surface;
+    std::vector<double> omega;  ///< (r) natural angular frequencies [rad/s].
+    double damping_ratio = 0.0; ///< ζ [-].
+    ModalIntegrator integrator = ModalIntegrator::Exact;
+    // State: hashed (q, q_dot) and snapshotted (all three).
+    std::vector<double> q;          ///< (r) amplitudes [√kg·m].
+    std::vector<double> q_dot;      ///< (r) their rates [√kg·m/s]; half a step behind q with
+                                    ///< central difference (leapfrog).
+    std::vector<double> host_force; ///< (r) generalized host forces for the next step [N/√kg]; cleared
+                                    ///< after each step, like ForceAccumulator.
+    // Derived and scratch.
+    std::vector<double> load;       ///< (r) contact generalized forces of this substep [N/√kg].
+    std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the
+                                    ///< nodes [N], body frame; projected on the modes once per substep.
+    bool has_nodal_load = false;
+    std::shared_ptr<Collider> collider;       ///< This body's collider (BodyModel::collider points to it),
+                                              ///< its samples deformed by UpdateSurfaces.
+    std::shared_ptr<SampleSet> samples;       ///< The deformed samples it holds.
+    bool surface_stale = false;               ///< q moved since the samples were last deformed.
+    double step_h = 0.0;                      ///< Substep the exact step maps below were made for [s].
+    std::vector<modal::ModeStep> exact_steps; ///< (r) per-mode exact maps for step_h.
+};
+
+using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator, ModalBody>;
 
 } // namespace supermodal

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Hash, snapshot and restore cover exactly the dynamic state (STYLE.md 2.4), walked in entity-index
 // order so the result does not depend on component-store history.
+#include "modal/modal_world.h"
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
@@ -115,6 +116,13 @@ uint64_t World::state_hash() const
         // Previous pose and pending forces are left out: the hash is of where bodies are and how they move.
         for (size_t i : {0, 1, 2, 3, 4, 5, 6, 14, 15, 16, 17, 18, 19})
             fnv.f64(values[i]);
+        if (w.reg.has<ModalBody>(e)) {
+            const ModalBody& b = w.reg.get<ModalBody>(e);
+            for (size_t k = 0; k < b.q.size(); ++k) {
+                fnv.f64(b.q[k]);
+                fnv.f64(b.q_dot[k]);
+            }
+        }
     });
     for (const PairAnchor& a : w.contact.anchors) {
         fnv.u64(a.key);
@@ -155,6 +163,12 @@ Snapshot World::snapshot() const
             return;
         s.entities.push_back(e);
         pack(w, e, s.values);
+        if (w.reg.has<ModalBody>(e)) {
+            const ModalBody& b = w.reg.get<ModalBody>(e);
+            s.modal_values.insert(s.modal_values.end(), b.q.begin(), b.q.end());
+            s.modal_values.insert(s.modal_values.end(), b.q_dot.begin(), b.q_dot.end());
+            s.modal_values.insert(s.modal_values.end(), b.host_force.begin(), b.host_force.end());
+        }
     });
     for (const PairAnchor& a : w.contact.anchors) {
         s.anchor_keys.push_back(a.key);
@@ -207,8 +221,26 @@ Status World::restore(const Snapshot& s)
         unpack_constraint(s.constraint_values.data() + i * k_values_per_constraint,
                           w.constraints.reg.get<ConstraintState>(live_constraints[i]));
     w.constraints.broken_count = s.broken_constraint_count;
+    size_t modal_count = 0;
+    for (Entity e : live)
+        if (w.reg.has<ModalBody>(e))
+            modal_count += 3 * w.reg.get<ModalBody>(e).q.size();
+    if (modal_count != s.modal_values.size())
+        return Error{"", "snapshot", "corrupt snapshot: modal value count does not match its bodies"};
     for (size_t i = 0; i < live.size(); ++i)
         unpack(w, live[i], s.values.data() + i * k_values_per_body);
+    const double* modal = s.modal_values.data();
+    for (Entity e : live) {
+        ModalBody* b = w.reg.find<ModalBody>(e);
+        if (b == nullptr)
+            continue;
+        const size_t r = b->q.size();
+        b->q.assign(modal, modal + r);
+        b->q_dot.assign(modal + r, modal + 2 * r);
+        b->host_force.assign(modal + 2 * r, modal + 3 * r);
+        modal += 3 * r;
+        update_modal_surface(*b);
+    }
     w.contact.anchors.clear();
     for (size_t i = 0; i < s.anchor_keys.size(); ++i)
         w.contact.anchors.push_back({s.anchor_keys[i], s.anchor_springs[i], s.anchor_twists[i]});

@@ -4,6 +4,7 @@
 #include "contact/contact_system.h"
 #include "core/assert.h"
 #include "dynamics/integrate.h"
+#include "modal/modal_world.h"
 #include "world/world_impl.h"
 
 #include <chrono>
@@ -97,6 +98,8 @@ void World::Impl::step()
         non_colliding_pairs(constraints, contact.excluded_pairs);
         substeps = update_pairs(def, reg, contact);
     });
+    // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -110,13 +113,14 @@ void World::Impl::step()
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
         });
-        run(Stage::ModalUpdate, [] {});
+        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
-        run(Stage::UpdateSurfaces, [] {});
+        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
     }
     run(Stage::Events, [&] {
         freeze_non_finite(reg, warnings);
         clear_forces(reg);
+        clear_modal_forces(reg);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;

@@ -23,7 +23,9 @@ struct World::Impl {
     ConstraintWorld constraints;                            ///< Penalty constraints (model + state).
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
-    bool locked = false;                                    ///< True inside step(): mutations assert.
+    ModalBasisCache modal_bases;                            ///< Model: one basis per distinct modal def.
+    std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
+    bool locked = false; ///< True inside step(): mutations assert.
 
     void step();
 };

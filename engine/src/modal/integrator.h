@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+// Time stepping of one vibration mode, q̈ + 2ζω q̇ + ω² q = F, over a step h with the generalized force
+// F [√kg·m/s² = N/√kg] held constant over the step (DESIGN.md §4 "Modal dynamics").
+#pragma once
+
+namespace supermodal::modal
+{
+
+/// One mode's step as a linear map: q₁ = a11 q₀ + a12 v₀ + b1 F, v₁ = a21 q₀ + a22 v₀ + b2 F.
+struct ModeStep {
+    double a11 = 1.0, a12 = 0.0, a21 = 0.0, a22 = 1.0;
+    double b1 = 0.0, b2 = 0.0;
+};
+
+/// The exact solution over h [s] for constant F, for ω ≥ 0 [rad/s], ζ ≥ 0 [-]: under-, critically and
+/// over-damped, and the ω → 0 limit (q̈ = F), all without cancellation (see integrator.cpp).
+/// Unconditionally stable: |eigenvalues| = exp(−ζωh) ≤ 1 for ζ < 1.
+[[nodiscard]] ModeStep exact_mode_step(double omega, double zeta, double h);
+
+/// Applies a step map to one mode's state (q [√kg·m], v [√kg·m/s]) under force F.
+void apply_mode_step(const ModeStep& s, double force, double& io_q, double& io_v);
+
+/// Largest ωh for which central difference is stable: 2 (for any ζ ≥ 0).
+inline constexpr double k_central_difference_limit = 2.0;
+
+/// Central difference (leapfrog) for one mode, the paper's explicit scheme: v is the velocity half a
+/// step behind q (v_{n−1/2} → v_{n+1/2}); damping uses the average of the two half-step velocities,
+///   v_{n+1/2} (1 + ζωh) = v_{n−1/2} (1 − ζωh) + h (F − ω² q_n),   q_{n+1} = q_n + h v_{n+1/2}.
+/// Stable for ωh < 2 whatever ζ; the caller checks that and switches a mode past it to exact_mode_step.
+void central_difference_step(double omega, double zeta, double h, double force, double& io_q, double& io_v);
+
+} // namespace supermodal::modal

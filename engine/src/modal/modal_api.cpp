@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+// Public queries and setters of modal bodies (engine/include/supermodal/modal.h, bottom section).
+#include "core/assert.h"
+#include "modal/modal_world.h"
+#include "supermodal/modal.h"
+#include "world/world_impl.h"
+
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+bool live(const World& world, Entity e)
+{
+    const World::Impl& w = world.impl();
+    const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
+    SM_ASSERT(ok, "stale or null body handle");
+    return ok;
+}
+
+const ModalBody* modal_of(const World& world, Entity e)
+{
+    if (!live(world, e) || !world.impl().reg.has<ModalBody>(e))
+        return nullptr;
+    return &world.impl().reg.get<ModalBody>(e);
+}
+
+} // namespace
+
+Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const BodyDef& def)
+{
+    if (!def.modal.enabled)
+        return Error{"", "modal", "the body is rigid (modal.enabled is false)"};
+    if (Status s = validate(def); !s)
+        return s.error();
+    return find_or_build_modal_basis(world.impl(), def);
+}
+
+const ModalBasis* body_modal_basis(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    return b ? b->basis.get() : nullptr;
+}
+
+BodyModalState body_modal_state(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    return b ? BodyModalState{b->q, b->q_dot} : BodyModalState{};
+}
+
+Status set_body_modal_state(World& world, Entity e, std::span<const double> amplitudes,
+                            std::span<const double> velocities)
+{
+    World::Impl& w = world.impl();
+    SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
+    if (w.locked)
+        return Error{"", "modal", "bodies cannot change while the world steps"};
+    ModalBody* b = live(world, e) ? w.reg.find<ModalBody>(e) : nullptr;
+    if (b == nullptr)
+        return Error{"", "modal", "not a modal body"};
+    if (amplitudes.size() != b->q.size() || velocities.size() != b->q.size())
+        return Error{"", "modal", "expected " + std::to_string(b->q.size()) + " amplitudes and rates"};
+    for (size_t k = 0; k < b->q.size(); ++k)
+        if (!std::isfinite(amplitudes[k]) || !std::isfinite(velocities[k]))
+            return Error{"", "modal", "amplitudes and rates must be finite"};
+    b->q.assign(amplitudes.begin(), amplitudes.end());
+    b->q_dot.assign(velocities.begin(), velocities.end());
+    update_modal_surface(*b);
+    return {};
+}
+
+double body_modal_energy(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return 0.0;
+    double energy = 0.0;
+    for (size_t k = 0; k < b->q.size(); ++k)
+        energy += b->q_dot[k] * b->q_dot[k] + b->omega[k] * b->omega[k] * b->q[k] * b->q[k];
+    return 0.5 * energy;
+}
+
+Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
+{
+    if (!live(world, e))
+        return {};
+    const World::Impl& w = world.impl();
+    const Pose& p = w.reg.get<Pose>(e);
+    const Vec3 com = w.reg.get<BodyModel>(e).mass.center_of_mass;
+    Vec3 local = point_shape - com;
+    if (w.reg.has<ModalBody>(e))
+        local += modal_displacement(*w.reg.get<ModalBody>(e).basis, point_shape, w.reg.get<ModalBody>(e).q);
+    return p.position + rotate(p.orientation, local);
+}
+
+} // namespace supermodal

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// Modal bodies inside a world: creation, generalized forces, the ModalUpdate and UpdateSurfaces stages.
+// Co-rotational: the rigid motion stays in the body (Pose, Velocity), the modes deform the body frame,
+// and loads are rotated into it before they are projected on the modes.
+#pragma once
+
+#include "contact/broadphase.h"
+#include "supermodal/world.h"
+#include "world/components.h"
+
+#include <memory>
+#include <span>
+
+namespace supermodal
+{
+
+struct StepContext;
+
+/// The basis definition a modal BodyDef asks for.
+[[nodiscard]] ModalBasisDef modal_basis_def(const BodyDef& def);
+/// The world's basis for a modal BodyDef, built on first use and cached.
+[[nodiscard]] Result<std::shared_ptr<const ModalBasis>> find_or_build_modal_basis(World::Impl& w,
+                                                                                  const BodyDef& def);
+/// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest.
+void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasis> basis, const BodyDef& def);
+
+/// Adds a point load f [N] at world point x [m] to e's contact generalized forces of this substep:
+/// Q += φ(x_local)ᵀ Rᵀ f. Does nothing for rigid bodies.
+void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
+/// The same into the host forces held for the next step (apply_force).
+void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
+/// What the modes add to a body's inverse mass at a world point for a push along unit world direction d
+/// held over a substep h [s]: Σ_k (φ_k(x_local) · Rᵀd)² · sinc²(ω_k h / 2) [1/kg] (for d = 0 the bound
+/// over directions, |φ_k|² in place of (φ_k · Rᵀd)²). The sinc² factor is how far mode k moves under a
+/// force held for h, relative to a free mass (1 for ω_k h → 0, 4/(ω_k h)² for a stiff mode, which only
+/// deflects statically). Contact springs are tuned on the inverse mass: without this a soft body's light
+/// surface makes the explicit contact coupling unstable (measured: a soft sphere bounced above its drop
+/// height). 0 for rigid bodies.
+[[nodiscard]] double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, const Vec3& d,
+                                        double h);
+/// An impulse J [N·s] at a world point changes the rates at once: q̇ += φ(x_local)ᵀ Rᵀ J.
+void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, const Vec3& impulse);
+
+/// ModalUpdate stage: steps every modal body's amplitudes over ctx.h under this substep's loads and the
+/// host loads, then clears the substep's loads.
+void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
+/// UpdateSurfaces stage: moves the contact samples of the modal bodies in `pairs` (the only ones the
+/// narrowphase will read) by their current amplitudes, if these moved since. Others stay stale until they
+/// join a pair: call it again after the broadphase.
+void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs);
+/// Moves one modal body's samples (after creation, set_body_modal_state, restore).
+void update_modal_surface(ModalBody& body);
+/// Clears host generalized forces once a step has used them.
+void clear_modal_forces(Registry& reg);
+
+} // namespace supermodal

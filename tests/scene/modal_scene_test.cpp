@@ -1,0 +1,139 @@
+// Tests for the modal part of engine/src/scene/body_reader.cpp and build_world: "dynamics" of type
+// "modal" with the material's E, ν, ρ and damping ratio.
+#include "supermodal/body.h"
+#include "supermodal/modal.h"
+#include "supermodal/scene.h"
+#include "supermodal/world.h"
+
+#include <gtest/gtest.h>
+#include <string>
+#include <string_view>
+
+namespace sm = supermodal;
+
+namespace
+{
+
+// A board of material "wood" with the given "dynamics" object (and optional extra body fields).
+std::string board_scene(std::string_view dynamics, std::string_view extra = "")
+{
+    return R"({"materials": {"wood": {"density": 450, "young": 11e9, "poisson": 0.25, "damping_ratio": 0.02}},
+  "bodies": [{"name": "board", "material": "wood", )" +
+           std::string(extra) + R"("shape": {"type": "superquadric", "radii": [0.5, 0.019, 0.0445],
+  "exponents": [0.05, 0.05]}, "dynamics": )" +
+           std::string(dynamics) + "}]}";
+}
+
+::testing::AssertionResult fails_at(const std::string& json, std::string_view where, std::string_view phrase)
+{
+    const sm::Result<sm::Scene> scene = sm::parse_scene(json, "test.json");
+    if (scene)
+        return ::testing::AssertionFailure() << "parsed without error";
+    const sm::Error& e = scene.error();
+    if (e.where != where || e.what.find(phrase) == std::string::npos)
+        return ::testing::AssertionFailure()
+               << "got \"" << e.message() << "\"; wanted where \"" << where << "\" and \"" << phrase << "\"";
+    return ::testing::AssertionSuccess();
+}
+
+} // namespace
+
+TEST(SceneModal, ReadsDynamicsAndMaterial)
+{
+    const sm::Result<sm::Scene> scene = sm::parse_scene(board_scene(
+        R"({"type": "modal", "modes": 6, "lattice": [8, 1, 1], "integrator": "central_difference"})"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::SceneBody& body = scene->bodies[0];
+    EXPECT_EQ(body.dynamics, sm::DynamicsType::Modal);
+    const sm::ModalBodyDef& modal = body.def.modal;
+    EXPECT_TRUE(modal.enabled);
+    EXPECT_EQ(modal.mode_count, 6);
+    EXPECT_EQ(modal.lattice, (std::array<int, 3>{8, 1, 1}));
+    EXPECT_EQ(modal.integrator, sm::ModalIntegrator::CentralDifference);
+    EXPECT_EQ(modal.young, 11e9);
+    EXPECT_EQ(modal.poisson, 0.25);
+    EXPECT_EQ(modal.damping_ratio, 0.02); // from the material
+    EXPECT_EQ(body.def.density, 450.0);
+
+    // Defaults: 12 modes, automatic lattice, exact integrator; the body's damping ratio wins.
+    const sm::Result<sm::Scene> defaults =
+        sm::parse_scene(board_scene(R"({"type": "modal", "damping_ratio": 0.5})"));
+    ASSERT_TRUE(defaults) << defaults.error().message();
+    EXPECT_EQ(defaults->bodies[0].def.modal.mode_count, 12);
+    EXPECT_EQ(defaults->bodies[0].def.modal.lattice, (std::array<int, 3>{0, 0, 0}));
+    EXPECT_EQ(defaults->bodies[0].def.modal.integrator, sm::ModalIntegrator::Exact);
+    EXPECT_EQ(defaults->bodies[0].def.modal.damping_ratio, 0.5);
+
+    // A rigid body ignores the modal fields.
+    const sm::Result<sm::Scene> rigid = sm::parse_scene(board_scene(R"({"type": "rigid", "modes": 6})"));
+    ASSERT_TRUE(rigid);
+    EXPECT_FALSE(rigid->bodies[0].def.modal.enabled);
+}
+
+TEST(SceneModal, BuildsAModalBodyWithItsBasis)
+{
+    const sm::Result<sm::Scene> scene =
+        sm::parse_scene(board_scene(R"({"type": "modal", "modes": 4, "lattice": [8, 1, 1]})"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    const sm::Entity board = sm::find_body(*world, "board");
+    const sm::ModalBasis* basis = sm::body_modal_basis(*world, board);
+    ASSERT_NE(basis, nullptr);
+    EXPECT_EQ(basis->mode_count, 4);
+    EXPECT_EQ(basis->cells, (std::array<int, 3>{8, 1, 1}));
+    EXPECT_EQ(basis->young, 11e9);
+    EXPECT_EQ(basis->poisson, 0.25);
+    EXPECT_EQ(basis->density, 450.0);
+    EXPECT_EQ(sm::body_modal_state(*world, board).amplitudes.size(), 4u);
+}
+
+TEST(SceneModal, SharesOneBasisBetweenIdenticalBodies)
+{
+    const std::string json =
+        R"({"materials": {"wood": {"density": 450, "young": 11e9}}, "bodies": [
+      {"name": "a", "material": "wood", "shape": {"type": "superquadric", "radii": [0.5, 0.02, 0.05]},
+       "dynamics": {"type": "modal", "modes": 3, "lattice": [8, 1, 1]}},
+      {"name": "b", "material": "wood", "position": [0, 1, 0],
+       "shape": {"type": "superquadric", "radii": [0.5, 0.02, 0.05]},
+       "dynamics": {"type": "modal", "modes": 3, "lattice": [8, 1, 1], "damping_ratio": 0.3}}]})";
+    const sm::Result<sm::Scene> scene = sm::parse_scene(json);
+    ASSERT_TRUE(scene) << scene.error().message();
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    // Damping is per body, not part of the basis: both share it.
+    EXPECT_EQ(sm::body_modal_basis(*world, sm::find_body(*world, "a")),
+              sm::body_modal_basis(*world, sm::find_body(*world, "b")));
+}
+
+TEST(SceneModal, ErrorsNameThePointer)
+{
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "modes": 0})"), "/bodies/0/dynamics/modes",
+                         "expected an integer in [1, 256], found 0"));
+    EXPECT_TRUE(
+        fails_at(board_scene(R"({"type": "modal", "modes": 300})"), "/bodies/0/dynamics/modes", "found 300"));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "lattice": [8, 0, 1]})"),
+                         "/bodies/0/dynamics/lattice/1", "expected an integer in [1, 128], found 0"));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "lattice": [8, 1]})"), "/bodies/0/dynamics/lattice",
+                         "expected an array of 3 integers"));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "integrator": "verlet"})"),
+                         "/bodies/0/dynamics/integrator", "\"exact\""));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "damping_ratio": -0.1})"),
+                         "/bodies/0/dynamics/damping_ratio", "expected a number >= 0"));
+    EXPECT_TRUE(
+        fails_at(board_scene(R"({"type": "modal", "mode": 3})"), "/bodies/0/dynamics/mode", "\"modes\""));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal"})", R"("motion": "kinematic", )"),
+                         "/bodies/0/dynamics/type", "modal dynamics need a \"dynamic\" body"));
+}
+
+TEST(SceneModal, BasisBuildFailureIsReportedByBuildWorld)
+{
+    // One 20-node cell has 60 dofs, 54 of them elastic: 100 modes cannot exist.
+    const sm::Result<sm::Scene> scene =
+        sm::parse_scene(board_scene(R"({"type": "modal", "modes": 100, "lattice": [1, 1, 1]})"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_FALSE(world);
+    EXPECT_EQ(world.error().where, "/bodies/0/dynamics");
+    EXPECT_NE(world.error().what.find("cannot build the modal basis"), std::string::npos);
+}
