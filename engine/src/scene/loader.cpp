@@ -228,6 +228,10 @@ void read_include(Reader& r, const Json& item, const std::string& where, Include
     if (ctx.open_files.size() >= k_max_include_depth)
         return r.fail(pointer_join(where, "file"),
                       "includes nest deeper than " + std::to_string(k_max_include_depth));
+    // Only regular files: a FIFO or a device (/dev/stdin) would block or never end.
+    if (!std::filesystem::is_regular_file(path, ec))
+        return r.fail(pointer_join(where, "file"),
+                      "cannot open file: not a regular file (" + path.string() + ")");
     Result<std::string> text = read_file(path.string());
     if (!text)
         return r.fail(pointer_join(where, "file"), text.error().what + " (" + path.string() + ")");
