@@ -25,12 +25,16 @@ struct WorldDef {
     int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
                                     ///< dropping the rest of the backlog so a slow frame cannot spiral.
     ContactDef contact{};           ///< Penalty contact settings.
+    int thread_count = 1;           ///< Threads for the step's per-pair work [-], in [1, 64]; the caller's
+                          ///< thread plus thread_count − 1 pool threads. Results are bit-identical
+                          ///< for any count; more than the free cores only adds waiting.
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
 [[nodiscard]] WorldDef default_world_def();
 
-/// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1.
+/// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1,
+/// thread_count in [1, 64].
 [[nodiscard]] Status validate(const WorldDef& def);
 
 /// The named stages of one step, in the order step() runs them.

@@ -23,12 +23,14 @@ using scene_io::Json;
 using scene_io::Reader;
 
 const std::vector<std::string_view> k_top_keys = {"settings", "materials", "bodies", "constraints"};
-const std::vector<std::string_view> k_settings_keys = {"dt", "substeps", "gravity", "duration",
-                                                       "max_steps_per_advance"};
+const std::vector<std::string_view> k_settings_keys = {
+    "dt", "substeps", "gravity", "duration", "max_steps_per_advance", "threads"};
 const std::vector<std::string_view> k_material_keys = {
     "density", "young", "poisson", "friction", "restitution", "damping_ratio", "yield_stress"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
+// Same bound as validate(const WorldDef&) on thread_count.
+constexpr double k_max_threads = 64.0;
 // Read size for scene files [bytes].
 constexpr size_t k_read_chunk = size_t{1} << 16;
 
@@ -46,6 +48,7 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
     r.field_number(*settings, where, "duration", scene_io::above(0.0), out_scene.duration);
     r.field_int(*settings, where, "max_steps_per_advance", scene_io::at_least(1.0),
                 world.max_steps_per_advance);
+    r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
     if (!r.ok())
         return;
     if (Status status = validate(world); !status)

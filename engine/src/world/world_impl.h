@@ -2,6 +2,7 @@
 #pragma once
 
 #include "contact/contact_system.h"
+#include "core/thread_pool.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
@@ -22,6 +23,7 @@ struct World::Impl {
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     bool locked = false;                                    ///< True inside step(): mutations assert.
+    std::unique_ptr<ThreadPool> pool; ///< Per-pair loops when def.thread_count > 1; null otherwise.
 
     void step();
 };
