@@ -46,6 +46,15 @@ size_t part_capacity(const ThreadPool* pool)
     return pool != nullptr ? static_cast<size_t>(pool->thread_count()) : 1;
 }
 
+// True when the box lies wholly on the outer side of the plane n·x = offset (n unit or not).
+bool box_above_plane(const Aabb& box, const ShapeDef& plane)
+{
+    const Vec3 n = normalized(plane.plane_normal);
+    const Vec3 lowest{n.x >= 0.0 ? box.min.x : box.max.x, n.y >= 0.0 ? box.min.y : box.max.y,
+                      n.z >= 0.0 ? box.min.z : box.max.z};
+    return dot(n, lowest) > plane.plane_offset;
+}
+
 // The narrowphase of one pair, appended to out_points.
 void collide_pair(const Registry& reg, const BodyPair& pair, std::vector<ContactPoint>& out_points)
 {
@@ -94,6 +103,21 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         io.proxies.push_back({.entity = e, .box = box, .is_static = m.motion != MotionType::Dynamic});
     });
     find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+    // A plane's box is unbounded, so the sweep pairs it with every body; keep only the bodies whose
+    // swept box reaches into its half-space (else a pile in a box of planes runs five plane tests per
+    // body per substep for nothing).
+    io.swept.resize(reg.pool().slot_count());
+    for (const BroadphaseProxy& proxy : io.proxies)
+        io.swept[proxy.entity.index] = proxy.box;
+    std::erase_if(io.pairs, [&](const BodyPair& pair) {
+        const ShapeDef& sa = reg.get<BodyModel>(pair.a).shape;
+        const ShapeDef& sb = reg.get<BodyModel>(pair.b).shape;
+        if (sa.type == ShapeType::Plane)
+            return box_above_plane(io.swept[pair.b.index], sa);
+        if (sb.type == ShapeType::Plane)
+            return box_above_plane(io.swept[pair.a.index], sb);
+        return false;
+    });
     begin_step_events(io.events, io.pairs.size());
 
     // Tunnelling rule: substep so that no pair closes by more than a fraction of the thinner body per
