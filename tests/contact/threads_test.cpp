@@ -149,6 +149,31 @@ TEST(ThreadPool, StaticPartitionCoversEveryIndexOnce)
     }
 }
 
+TEST(ThreadPool, RoundRobinBlocksCoverEveryIndexOnce)
+{
+    constexpr size_t k_block = 3;
+    for (int threads : {2, 3}) {
+        sm::ThreadPool pool(threads);
+        constexpr size_t k_count = 100;
+        std::vector<std::atomic<int>> hits(k_count);
+        std::vector<std::atomic<int>> owner(k_count);
+        pool.parallel_for(
+            k_count, 4,
+            [&](size_t part, size_t begin, size_t end) {
+                EXPECT_LE(end - begin, k_block);
+                for (size_t i = begin; i < end; ++i) {
+                    ++hits[i];
+                    owner[i] = static_cast<int>(part);
+                }
+            },
+            k_block);
+        for (size_t i = 0; i < k_count; ++i) {
+            EXPECT_EQ(hits[i].load(), 1) << threads << " threads, index " << i;
+            EXPECT_EQ(owner[i].load(), static_cast<int>((i / k_block) % static_cast<size_t>(threads)));
+        }
+    }
+}
+
 TEST(ContactThreads, ThreadCountIsValidated)
 {
     sm::WorldDef def = sm::default_world_def();

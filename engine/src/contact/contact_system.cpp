@@ -18,6 +18,11 @@ namespace
 constexpr double k_frequency_cap_per_rate = 0.1;
 // Fewest pairs worth a thread part: below this, waking a worker costs more than the pairs.
 constexpr size_t k_min_pairs_per_part = 32;
+// Pairs are dealt to the threads in blocks of this many, round-robin: pairs sorted by key put all of a
+// static body's pairs (floor, walls) together, and one contiguous range per thread would hand them to
+// one thread (N = 250 ellipsoid pile, 2 threads, time on free cores: 5.2 ms per step with contiguous
+// ranges, 4.95 ms round-robin, of 8.3–8.9 ms CPU).
+constexpr size_t k_pairs_per_block = 16;
 
 Aabb body_box(const BodyModel& m, const Pose& p)
 {
@@ -36,7 +41,7 @@ PairAnchor* find_anchor(std::vector<PairAnchor>& anchors, uint64_t key)
 template <class Fn> void for_parts(ThreadPool* pool, size_t count, Fn&& fn)
 {
     if (pool != nullptr)
-        pool->parallel_for(count, k_min_pairs_per_part, fn);
+        pool->parallel_for(count, k_min_pairs_per_part, fn, k_pairs_per_block);
     else if (count > 0)
         fn(size_t{0}, size_t{0}, count);
 }
@@ -55,8 +60,9 @@ bool box_above_plane(const Aabb& box, const ShapeDef& plane)
     return dot(n, lowest) > plane.plane_offset;
 }
 
-// The narrowphase of one pair, appended to out_points.
-void collide_pair(const Registry& reg, const BodyPair& pair, std::vector<ContactPoint>& out_points)
+// The narrowphase of one pair, appended to out_points; boxes holds each body's world box this substep.
+void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPair& pair,
+                  std::vector<ContactPoint>& out_points)
 {
     const BodyModel& ma = reg.get<BodyModel>(pair.a);
     const BodyModel& mb = reg.get<BodyModel>(pair.b);
@@ -65,8 +71,8 @@ void collide_pair(const Registry& reg, const BodyPair& pair, std::vector<Contact
     const bool plane_a = ma.shape.type == ShapeType::Plane, plane_b = mb.shape.type == ShapeType::Plane;
     if (plane_a && plane_b)
         return;
-    const BodyView a{ma.collider.get(), pa.position, pa.orientation, plane_a ? Aabb{} : body_box(ma, pa)};
-    const BodyView b{mb.collider.get(), pb.position, pb.orientation, plane_b ? Aabb{} : body_box(mb, pb)};
+    const BodyView a{ma.collider.get(), pa.position, pa.orientation, plane_a ? Aabb{} : boxes[pair.a.index]};
+    const BodyView b{mb.collider.get(), pb.position, pb.orientation, plane_b ? Aabb{} : boxes[pair.b.index]};
     if (plane_b)
         collide_plane(a, b, true, out_points);
     else if (plane_a)
@@ -144,11 +150,21 @@ void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, C
     for (std::vector<ContactPoint>& points : io.part_points)
         points.clear();
     io.pair_points.resize(io.pairs.size());
+    // World boxes once per body, not once per pair it is in (three support-map calls each).
+    io.boxes.resize(reg.pool().slot_count());
+    for_parts(pool, io.proxies.size(), [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const Entity e = io.proxies[i].entity;
+            const BodyModel& m = reg.get<BodyModel>(e);
+            if (m.shape.type != ShapeType::Plane)
+                io.boxes[e.index] = body_box(m, reg.get<Pose>(e));
+        }
+    });
     for_parts(pool, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
         std::vector<ContactPoint>& points = io.part_points[part];
         for (size_t pi = begin; pi < end; ++pi) {
             const auto first = static_cast<uint32_t>(points.size());
-            collide_pair(reg, io.pairs[pi], points);
+            collide_pair(reg, io.boxes, io.pairs[pi], points);
             io.pair_points[pi] = {static_cast<uint32_t>(part), first, static_cast<uint32_t>(points.size())};
         }
     });

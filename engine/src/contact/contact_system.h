@@ -33,6 +33,7 @@ struct PairPoints {
 struct ContactWorld {
     std::vector<PairAnchor> anchors;                    ///< State: sorted by key; hashed and snapshotted.
     std::vector<BroadphaseProxy> proxies;               ///< Scratch.
+    std::vector<Aabb> boxes;                            ///< Scratch: world box per entity index [m].
     std::vector<Aabb> swept;                            ///< Scratch: swept box per entity index [m], world.
     BroadphaseScratch broadphase;                       ///< Scratch.
     std::vector<BodyPair> pairs;                        ///< Derived: candidate pairs of this step, sorted.
