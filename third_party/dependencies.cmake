@@ -1,4 +1,5 @@
 # System packages only (Debian); scripts/deps.sh installs them. No third-party source in the repo.
+find_package(Threads REQUIRED)             # contact: the per-pair thread pool (WorldDef::thread_count)
 find_package(nlohmann_json 3.10 CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(Eigen3 3.4 CONFIG REQUIRED)   # modal: sparse assembly, dense eigen solves

@@ -38,6 +38,7 @@ struct RunOptions {
     std::string csv_out;
     int csv_every = 1;
     bool quiet = false;
+    int threads = 0; ///< Overrides the scene's settings.threads when > 0.
 };
 int run_command(const RunOptions& options);
 

@@ -85,6 +85,32 @@ nlohmann::json body_summary(const World& world, Entity b)
             {"potential_energy", body_potential_energy(world, b)}};
 }
 
+// Contact counts over the run, from the per-step contact list and events.
+struct ContactTally {
+    size_t max_contacts = 0;
+    double max_penetration = 0.0; ///< Deepest over all steps [m].
+    uint64_t begins = 0, ends = 0;
+
+    void add(const World& world)
+    {
+        max_contacts = std::max(max_contacts, world_contacts(world).size());
+        max_penetration = std::max(max_penetration, world_max_penetration(world));
+        for (const ContactEvent& e : world_contact_events(world)) {
+            begins += e.kind == ContactEventKind::Begin ? 1 : 0;
+            ends += e.kind == ContactEventKind::End ? 1 : 0;
+        }
+    }
+    [[nodiscard]] nlohmann::json summary(const World& world) const
+    {
+        return {{"contacts", world_contacts(world).size()},
+                {"max_contacts", max_contacts},
+                {"penetration", world_max_penetration(world)},
+                {"max_penetration", max_penetration},
+                {"begin_events", begins},
+                {"end_events", ends}};
+    }
+};
+
 std::string hex(uint64_t v)
 {
     char buf[32];
@@ -119,6 +145,8 @@ int run_command(const RunOptions& opt)
         print_error(scene.error().message());
         return k_exit_bad_input;
     }
+    if (opt.threads > 0)
+        scene->world.thread_count = opt.threads;
     Result<World> built = build_world(*scene);
     if (!built) {
         print_error(built.error().message());
@@ -144,11 +172,13 @@ int run_command(const RunOptions& opt)
     std::vector<double> step_ms;
     step_ms.reserve(static_cast<size_t>(std::min(steps, 10'000'000LL)));
     std::array<double, static_cast<size_t>(Stage::Count)> stage_total{};
+    ContactTally tally;
     Progress progress(steps, !opt.quiet);
     double peak_constraint_error = 0.0;
     for (long long i = 1; i <= steps; ++i) {
         world.step();
         peak_constraint_error = std::max(peak_constraint_error, world_max_constraint_error(world));
+        tally.add(world);
         step_ms.push_back(world.profile().total_ms);
         for (size_t s = 0; s < stage_total.size(); ++s)
             stage_total[s] += world.profile().stage_ms[s];
@@ -176,6 +206,7 @@ int run_command(const RunOptions& opt)
         {"time", world.time()},
         {"dt", dt},
         {"substeps", world.settings().substep_count},
+        {"threads", world.settings().thread_count},
         {"body_count", bodies.size()},
         {"state_hash", hex(world.state_hash())},
         {"ms_per_step",
@@ -183,6 +214,7 @@ int run_command(const RunOptions& opt)
           {"median", sorted[sorted.size() / 2]},
           {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
         {"stage_ms_mean", stages},
+        {"contact", tally.summary(world)},
         {"energy",
          {{"initial_kinetic", e0.kinetic},
           {"initial_potential", e0.potential},

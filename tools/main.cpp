@@ -28,6 +28,11 @@ int main(int argc, char** argv)
         "--csv", run.csv_out,
         "Write a per-step trace: step,time,body,position,orientation,velocity,angular velocity");
     run_cmd->add_option("--csv-every", run.csv_every, "Trace every K-th step")->check(CLI::PositiveNumber);
+    run_cmd
+        ->add_option("--threads", run.threads,
+                     "Threads for the contact stages (default: the scene's settings.threads); results are "
+                     "identical for any count")
+        ->check(CLI::Range(1, 64));
     run_cmd->add_flag("--quiet", run.quiet, "No progress bar (it is shown only on a terminal anyway)");
 
     cli::InspectOptions inspect;

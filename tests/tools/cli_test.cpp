@@ -184,3 +184,24 @@ TEST(Cli, DemoSceneRuns)
     ASSERT_EQ(o.status, 0) << o.output;
     EXPECT_EQ(nlohmann::json::parse(o.output)["body_count"], 4);
 }
+
+TEST(Cli, ThreadsGiveTheSameHashAndContactsAreReported)
+{
+    // The demo lands three bodies on the ground within 1000 steps (2 s).
+    const std::string demo = std::string(SM_SOURCE_DIR) + "/samples/demo.json --steps 1000";
+    const Outcome one = run_cli("run " + demo);
+    const Outcome two = run_cli("run " + demo + " --threads 2");
+    ASSERT_EQ(one.status, 0) << one.output;
+    ASSERT_EQ(two.status, 0) << two.output;
+    const auto s1 = nlohmann::json::parse(one.output), s2 = nlohmann::json::parse(two.output);
+    EXPECT_EQ(s1["state_hash"], s2["state_hash"]);
+    EXPECT_EQ(s1["threads"], 1);
+    EXPECT_EQ(s2["threads"], 2);
+    const auto& c = s1["contact"];
+    EXPECT_GE(c["contacts"].get<int>(), 1);
+    EXPECT_GE(c["begin_events"].get<int>(), c["end_events"].get<int>());
+    EXPECT_GT(c["max_penetration"].get<double>(), 0.0);
+    EXPECT_LT(c["max_penetration"].get<double>(), 0.05); // nothing sank through the ground
+    EXPECT_EQ(run_cli("run " + demo + " --threads 0").status, 2);
+    EXPECT_EQ(run_cli("run " + demo + " --threads 65").status, 2);
+}

@@ -53,6 +53,39 @@ struct ContactInfo {
     int point_count = 0; ///< Contact points (samples or manifold points) behind this contact [-].
 };
 
+/// What happened to a pair during one step.
+enum class ContactEventKind : uint8_t {
+    Begin,   ///< Touching this step, not at the end of the previous one.
+    Persist, ///< Touching at the end of the previous step and again this step.
+    End,     ///< Not touching at the end of this step, but was during it or at the end of the previous.
+};
+
+/// One contact event of a step. A pair that touches and lets go within one step (fast bodies, several
+/// substeps) gets a Begin and an End in that step.
+struct ContactEvent {
+    ContactEventKind kind = ContactEventKind::Begin;
+    Entity a{};              ///< Lower entity index of the pair.
+    Entity b{};              ///< Higher entity index (or the plane / static body).
+    Vec3 point{};            ///< Contact point [m], world, at the last substep the pair touched.
+    Vec3 normal{};           ///< Unit normal from b towards a, world, at that substep.
+    Vec3 impulse_on_a{};     ///< Contact impulse on a over the step, Σ h·F over the substeps (normal +
+                             ///< friction) [N·s], world; b gets the opposite. Reported once per pair
+                             ///< and step: on its Begin or Persist, else on its End (zero when the
+                             ///< pair did not touch this step).
+    double normal_impulse{}; ///< Normal part of that impulse, Σ h·F_n over the substeps [N·s], ≥ 0.
+    double depth = 0.0;      ///< Deepest penetration of the pair during the step [m].
+};
+
+/// Host callback for contact events, called in the step's Events stage once per event, serially, in
+/// (a index, b index, kind) order. It must not step the world (asserted).
+using ContactEventFn = void (*)(const ContactEvent& event, void* user_data);
+
+/// Registers fn (with user_data handed back on each call) for the world's contact events; a null fn
+/// removes it. Not allowed from inside a callback (asserted).
+void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data);
+/// The contact events of the last step, in the order the callback receives them.
+[[nodiscard]] std::span<const ContactEvent> world_contact_events(const World& world);
+
 /// The contacts found in the last step (the last substep), sorted by (a, b) index.
 [[nodiscard]] std::span<const ContactInfo> world_contacts(const World& world);
 /// The deepest penetration in the last step [m].

@@ -27,13 +27,16 @@ struct WorldDef {
     ContactDef contact{};           ///< Penalty contact settings.
     int constraint_iterations = 4;  ///< Gauss–Seidel passes over the constraint springs per substep [-],
                                     ///< in [1, 100]; more lets chains of unequal masses hold tighter.
+    int thread_count = 1;           ///< Threads for the step's per-pair work [-], in [1, 64]; the caller's
+                          ///< thread plus thread_count − 1 pool threads. Results are bit-identical
+                          ///< for any count; more than the free cores only adds waiting.
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
 [[nodiscard]] WorldDef default_world_def();
 
 /// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1,
-/// constraint_iterations in [1, 100].
+/// constraint_iterations in [1, 100], thread_count in [1, 64].
 [[nodiscard]] Status validate(const WorldDef& def);
 
 /// The named stages of one step, in the order step() runs them.
@@ -75,12 +78,12 @@ struct Snapshot {
     double time = 0.0;
     uint64_t step_count = 0;
     double accumulator = 0.0;
-    std::vector<Entity> entities;      ///< Bodies in index order.
-    std::vector<double> values;        ///< Packed per-body state, k_values_per_body each.
-    std::vector<uint64_t> anchor_keys; ///< Friction anchors: pair keys, sorted.
-    std::vector<Vec3> anchor_springs;  ///< Friction anchors: tangential spring extensions [m].
-    std::vector<double> anchor_twists; ///< Friction anchors: torsional spring angles [rad].
-    std::vector<Entity> constraints;   ///< Constraint handles (as entities) in index order.
+    std::vector<Entity> entities;          ///< Bodies in index order.
+    std::vector<double> values;            ///< Packed per-body state, k_values_per_body each.
+    std::vector<uint64_t> anchor_keys;     ///< Friction anchors: pair keys, sorted.
+    std::vector<Vec3> anchor_springs;      ///< Friction anchors: tangential spring extensions [m].
+    std::vector<double> anchor_twists;     ///< Friction anchors: torsional spring angles [rad].
+    std::vector<Entity> constraints;       ///< Constraint handles (as entities) in index order.
     std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
     uint64_t broken_constraint_count = 0;
 
@@ -89,7 +92,7 @@ struct Snapshot {
     std::vector<uint64_t> manifold_keys;
     std::vector<int> manifold_counts;
     std::vector<Vec3> manifold_points;
-    std::vector<double> modal_values;  ///< Modal bodies in index order: amplitudes, rates, host forces.
+    std::vector<double> modal_values; ///< Modal bodies in index order: amplitudes, rates, host forces.
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

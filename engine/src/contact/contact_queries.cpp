@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "core/assert.h"
 #include "supermodal/contact.h"
 #include "world/world_impl.h"
 
@@ -13,6 +14,21 @@ std::span<const ContactInfo> world_contacts(const World& world)
 double world_max_penetration(const World& world)
 {
     return world.impl().contact.max_penetration;
+}
+
+void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data)
+{
+    World::Impl& w = world.impl();
+    SM_ASSERT(!w.locked, "world_set_contact_callback() called from inside a step");
+    if (w.locked)
+        return;
+    w.contact.events.callback = fn;
+    w.contact.events.user_data = user_data;
+}
+
+std::span<const ContactEvent> world_contact_events(const World& world)
+{
+    return world.impl().contact.events.events;
 }
 
 } // namespace supermodal

@@ -1,64 +1,74 @@
 // SPDX-License-Identifier: MIT
 // The contact stages of the step: pairs once per step from swept boxes (which also decides how many
 // substeps a fast body needs so it cannot tunnel), contact points per substep, penalty forces.
+//
+// Threads: the narrowphase and the per-pair penalty math run over a static partition of the sorted
+// pair list; each part writes its own point buffer and per-pair slots, and everything that touches
+// two bodies is added up serially in pair order, so results are bit-identical for any thread count.
 #pragma once
 
 #include "contact/broadphase.h"
+#include "contact/events.h"
 #include "contact/manifold.h"
 #include "contact/narrowphase.h"
+#include "contact/penalty.h"
 #include "supermodal/contact.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
-#include <array>
+#include <span>
 #include <vector>
 
 namespace supermodal
 {
 
 struct StepContext;
+class ThreadPool;
 
-/// Friction state of a touching pair: the tangential spring's extension (Cundall–Strack anchor).
-struct PairAnchor {
-    uint64_t key = 0;   ///< BodyPair::key().
-    Vec3 spring{};      ///< Tangential spring extension [m], world, in the contact plane.
-    double twist = 0.0; ///< Torsional spring angle about the contact normal [rad].
-};
-
-/// Memo of damping ratios per restitution (a 50-step bisection): a pure function, so hits and misses
-/// give the same bits.
-struct ZetaCache {
-    struct Entry {
-        double e = -1.0, zeta = 0.0;
-    };
-    std::array<Entry, 8> entries{};
-    size_t next = 0;
-    double get(double e);
+/// Where one pair's points of this substep sit: part_points[part][begin, end).
+struct PairPoints {
+    uint32_t part = 0, begin = 0, end = 0;
 };
 
 /// Contact data of a world: state (anchors), derived (pairs, points, contacts), scratch.
 struct ContactWorld {
-    std::vector<PairAnchor> anchors;      ///< State: sorted by key; hashed and snapshotted.
-    std::vector<PairManifold> manifolds;  ///< State: support-map pairs' points, sorted by key; hashed.
-    std::vector<BroadphaseProxy> proxies; ///< Scratch.
-    BroadphaseScratch broadphase;         ///< Scratch.
-    std::vector<BodyPair> pairs;          ///< Derived: candidate pairs of this step, sorted.
-    std::vector<uint64_t> excluded_pairs; ///< Input: sorted keys (lo << 32 | hi) of pairs that never collide.
-    std::vector<ContactPoint> points;     ///< Derived: this substep's points, grouped by pair.
-    std::vector<uint32_t> pair_start;     ///< Derived: pairs.size() + 1 offsets into points.
-    std::vector<ContactInfo> contacts;    ///< Derived: touching pairs of the last substep.
-    std::vector<Vec3> force, torque;      ///< Scratch: per entity index.
-    double max_penetration = 0.0;         ///< Derived: deepest point of the last substep [m].
-    ZetaCache zeta_cache;                 ///< Scratch.
+    std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
+    std::vector<PairManifold> manifolds;     ///< State: support-map pairs' points, sorted by key.
+    std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
+    std::vector<uint8_t> deferred;           ///< Scratch: per pair, penalty runs serially (modal).
+    std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
+    std::vector<BroadphaseProxy> proxies;    ///< Scratch.
+    std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].
+    std::vector<Aabb> swept;                 ///< Scratch: swept box per entity index [m], world.
+    BroadphaseScratch broadphase;            ///< Scratch.
+    std::vector<BodyPair> pairs;             ///< Derived: candidate pairs of this step, sorted.
+    std::vector<std::vector<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
+    std::vector<PairPoints> pair_points;                ///< Derived: per pair, where its points are.
+    std::vector<PairForce> pair_force;                  ///< Scratch: per pair, this substep's forces.
+    std::vector<ContactInfo> contacts;                  ///< Derived: touching pairs of the last substep.
+    std::vector<uint8_t> has_twist;     ///< Scratch: per contact, the torsional spring is active.
+    std::vector<Vec3> force, torque;    ///< Scratch: per entity index.
+    double max_penetration = 0.0;       ///< Derived: deepest point of the last substep [m].
+    std::vector<ZetaCache> zeta_caches; ///< Scratch: one per part.
+    ContactEvents events;               ///< Step events and the host's callback.
+
+    /// The points of pair pi in this substep.
+    [[nodiscard]] std::span<const ContactPoint> points_of(size_t pi) const
+    {
+        const PairPoints& r = pair_points[pi];
+        return {part_points[r.part].data() + r.begin, r.end - r.begin};
+    }
 };
 
 /// Broadphase over boxes swept by each body's motion over dt; returns the substep count needed so that
 /// no body moves more than ContactDef::speculative_speed_factor of a partner's thickness per substep.
+/// Also starts the step's event accumulators.
 [[nodiscard]] int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
-/// Narrowphase for this substep's poses.
-void collide_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
-/// Penalty normal and friction forces into velocities; updates the friction anchors.
-void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg,
+/// Narrowphase for this substep's poses; pool may be null (one thread).
+void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, ContactWorld& io_contact);
+/// Penalty normal and friction forces into velocities; updates the friction anchors and the step's
+/// event accumulators. pool may be null (one thread).
+void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, ThreadPool* pool,
                           ContactWorld& io_contact, StepWarnings& io_warnings);
 
 } // namespace supermodal

@@ -33,7 +33,8 @@ const std::vector<std::string_view> k_top_keys = {"settings", "materials", "incl
 const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
-    "dt", "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations", "contact"};
+    "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
+    "contact", "threads"};
 const std::vector<std::string_view> k_contact_keys = {"path"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
@@ -42,6 +43,8 @@ const std::vector<std::string_view> k_material_keys = {
     "density", "young", "poisson", "friction", "restitution", "damping_ratio", "yield_stress"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
+// Same bound as validate(const WorldDef&) on thread_count.
+constexpr double k_max_threads = 64.0;
 // Read size for scene files [bytes].
 constexpr size_t k_read_chunk = size_t{1} << 16;
 
@@ -70,6 +73,7 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
                 world.contact.path = static_cast<ContactPath>(index);
             }
     }
+    r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
     if (!r.ok())
         return;
     if (Status status = validate(world); !status)

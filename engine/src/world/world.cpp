@@ -16,6 +16,8 @@ namespace
 {
 
 constexpr int k_max_substeps = 1000;
+// More threads than this is a mistake for per-pair loops on one machine, not a setting.
+constexpr int k_max_threads = 64;
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point start)
@@ -42,6 +44,8 @@ Status validate(const WorldDef& def)
         return Error{"", "max_steps_per_advance", "expected an integer >= 1"};
     if (def.constraint_iterations < 1 || def.constraint_iterations > 100)
         return Error{"", "constraint_iterations", "expected an integer in [1, 100]"};
+    if (def.thread_count < 1 || def.thread_count > k_max_threads)
+        return Error{"", "thread_count", "expected an integer in [1, 64]"};
     return {};
 }
 
@@ -74,6 +78,8 @@ World::World(const WorldDef& def) : m_impl(std::make_unique<Impl>())
 {
     SM_ASSERT(validate(def).ok(), "invalid WorldDef");
     m_impl->def = validate(def).ok() ? def : default_world_def();
+    if (m_impl->def.thread_count > 1)
+        m_impl->pool = std::make_unique<ThreadPool>(m_impl->def.thread_count);
 }
 World::~World() = default;
 World::World(World&&) noexcept = default;
@@ -107,9 +113,9 @@ void World::Impl::step()
     ctx.h = def.dt / substeps;
     for (int i = 0; i < ctx.substep_count; ++i) {
         run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
-        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, contact); });
+        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, pool.get(), contact); });
         run(Stage::PenaltyForces, [&] {
-            apply_penalty_forces(def, ctx, reg, contact, warnings);
+            apply_penalty_forces(def, ctx, reg, pool.get(), contact, warnings);
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
         });
@@ -121,6 +127,7 @@ void World::Impl::step()
         freeze_non_finite(reg, warnings);
         clear_forces(reg);
         clear_modal_forces(reg);
+        publish_events(contact.events, contact.pairs, contact.contacts);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;

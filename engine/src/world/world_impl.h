@@ -3,6 +3,7 @@
 
 #include "constraints/constraint_world.h"
 #include "contact/contact_system.h"
+#include "core/thread_pool.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
@@ -25,7 +26,8 @@ struct World::Impl {
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     ModalBasisCache modal_bases;                            ///< Model: one basis per distinct modal def.
     std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
-    bool locked = false; ///< True inside step(): mutations assert.
+    bool locked = false;              ///< True inside step(): mutations assert.
+    std::unique_ptr<ThreadPool> pool; ///< Per-pair loops when def.thread_count > 1; null otherwise.
 
     void step();
 };

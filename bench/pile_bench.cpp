@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+// Issue #5 pile: N bodies (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an
+// open box, dt = 1/240 s, 720 steps, μ = 0.5. Reported over the last 240 steps: ms per step (the
+// benchmark's manual time, per step, and the process CPU time per step), the deepest penetration, the
+// contacts at the end, and the wall time per stage from the world's profile. free_cores_ms_per_step
+// estimates the wall time on idle cores from thread CPU times: the serial CPU time plus, for each
+// parallel loop, its busiest part (this machine is shared, so its wall times with two threads are not).
+//
+// The floor and the four walls are static half-spaces (planes) at the inner faces of the 0.1 m thick
+// walls of the protocol: the same for everything inside the box, and nothing inside can tunnel
+// through a half-space. Arguments: N, threads, substeps per step.
+#include "supermodal/body.h"
+#include "supermodal/contact.h"
+#include "supermodal/world.h"
+#include "world/world_impl.h"
+
+#include <benchmark/benchmark.h>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <ctime>
+
+namespace sm = supermodal;
+
+namespace
+{
+
+constexpr double k_pitch = 0.2;    // grid pitch [m]
+constexpr int k_layers = 10;       // grid layers [-]
+constexpr double k_jitter = 0.02;  // ± jitter of each grid position [m], a tenth of the pitch
+constexpr int k_steps = 720;       // whole run [-]
+constexpr int k_timed_steps = 240; // measured at the end [-]
+
+// CPU time of the whole process [s]: on a shared machine the one-thread cost, unlike wall time, does
+// not count the time other jobs held the core.
+double process_cpu_seconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+sm::ThreadPool::CpuStats pool_stats(const sm::World& w)
+{
+    return w.impl().pool ? w.impl().pool->cpu_stats() : sm::ThreadPool::CpuStats{};
+}
+
+enum class Shape { Sphere, Ellipsoid, RoundedBox };
+
+sm::ShapeDef pile_shape(Shape shape)
+{
+    sm::ShapeDef s = sm::default_shape_def();
+    switch (shape) {
+    case Shape::Sphere:
+        s.radii = {0.05, 0.05, 0.05};
+        break;
+    case Shape::Ellipsoid:
+        s.radii = {0.06, 0.04, 0.03};
+        break;
+    case Shape::RoundedBox:
+        s.radii = {0.05, 0.05, 0.05};
+        s.epsilon1 = s.epsilon2 = 0.3;
+        break;
+    }
+    return s;
+}
+
+// A fixed LCG, so every run builds the same pile; uniform in [-1, 1).
+struct Lcg {
+    uint32_t state = 2026;
+    double next()
+    {
+        state = state * 1664525u + 1013904223u;
+        return static_cast<double>(state >> 8) / 8388608.0 - 1.0;
+    }
+};
+
+void add_wall(sm::World& w, sm::Vec3 normal, double offset)
+{
+    sm::BodyDef d = sm::default_body_def();
+    d.motion = sm::MotionType::Static;
+    d.shape.type = sm::ShapeType::Plane;
+    d.shape.plane_normal = normal;
+    d.shape.plane_offset = offset;
+    d.friction = 0.5;
+    (void)sm::create_body(w, d);
+}
+
+sm::World make_pile(Shape shape, int n, int threads, int substeps)
+{
+    sm::WorldDef def = sm::default_world_def();
+    def.dt = 1.0 / 240.0;
+    def.substep_count = substeps;
+    def.thread_count = threads;
+    sm::World w(def);
+    const int per_layer = (n + k_layers - 1) / k_layers;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
+    const double half = 0.5 * side * k_pitch; // inner half-width of the box [m]
+    add_wall(w, {0, 1, 0}, 0.0);
+    add_wall(w, {1, 0, 0}, -half);
+    add_wall(w, {-1, 0, 0}, -half);
+    add_wall(w, {0, 0, 1}, -half);
+    add_wall(w, {0, 0, -1}, -half);
+    Lcg rng;
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / per_layer, cell = i % per_layer;
+        sm::BodyDef d = sm::default_body_def();
+        d.shape = pile_shape(shape);
+        d.density = 1000.0;
+        d.friction = 0.5;
+        d.position = {-half + k_pitch * (cell % side + 0.5) + k_jitter * rng.next(),
+                      k_pitch * (layer + 0.5) + k_jitter * rng.next(),
+                      -half + k_pitch * (cell / side + 0.5) + k_jitter * rng.next()};
+        // A random orientation: a normalised 4-vector of uniform components (enough spread for a pile).
+        const sm::Quat q{rng.next(), rng.next(), rng.next(), rng.next()};
+        const double len = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+        d.orientation = {q.w / len, q.x / len, q.y / len, q.z / len};
+        (void)sm::create_body(w, d);
+    }
+    return w;
+}
+
+void BM_Pile(benchmark::State& st, Shape shape)
+{
+    const int n = static_cast<int>(st.range(0));
+    const int threads = static_cast<int>(st.range(1));
+    const int substeps = static_cast<int>(st.range(2));
+    double max_pen = 0.0, ms = 0.0, cpu_ms = 0.0, free_cores_ms = 0.0;
+    size_t contacts = 0, pairs = 0;
+    std::array<double, static_cast<size_t>(sm::Stage::Count)> stage_ms{};
+    for (auto _ : st) {
+        sm::World w = make_pile(shape, n, threads, substeps);
+        max_pen = 0.0;
+        stage_ms.fill(0.0);
+        for (int i = 0; i < k_steps - k_timed_steps; ++i)
+            w.step();
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        const sm::ThreadPool::CpuStats pool_start = pool_stats(w);
+        for (int i = 0; i < k_timed_steps; ++i) {
+            w.step();
+            max_pen = std::max(max_pen, sm::world_max_penetration(w));
+            for (size_t s = 0; s < stage_ms.size(); ++s)
+                stage_ms[s] += w.profile().stage_ms[s];
+        }
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        st.SetIterationTime(seconds);
+        ms = 1e3 * seconds / k_timed_steps;
+        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        // On free cores the loops take as long as their busiest part; everything else is serial.
+        const sm::ThreadPool::CpuStats pool_end = pool_stats(w);
+        const double parts_ms = 1e3 * (pool_end.parts_s - pool_start.parts_s) / k_timed_steps;
+        const double busiest_ms = 1e3 * (pool_end.busiest_s - pool_start.busiest_s) / k_timed_steps;
+        free_cores_ms = cpu_ms - parts_ms + busiest_ms;
+        contacts = sm::world_contacts(w).size();
+        pairs = w.impl().contact.pairs.size();
+    }
+    st.SetItemsProcessed(st.iterations() * k_timed_steps * n); // body-steps
+    st.counters["ms_per_step"] = ms;
+    st.counters["cpu_ms_per_step"] = cpu_ms;
+    st.counters["free_cores_ms_per_step"] = free_cores_ms;
+    st.counters["max_penetration_mm"] = 1e3 * max_pen;
+    st.counters["contacts"] = static_cast<double>(contacts);
+    st.counters["pairs"] = static_cast<double>(pairs); // broadphase candidates
+    for (size_t s = 0; s < stage_ms.size(); ++s) {
+        const double per_step = stage_ms[s] / k_timed_steps;
+        if (per_step > 0.0)
+            st.counters["ms_" + std::string(sm::stage_name(static_cast<sm::Stage>(s)))] = per_step;
+    }
+}
+
+// N, threads, substeps. Each run is one iteration: building and settling the pile is the protocol.
+void pile_args(benchmark::internal::Benchmark* b)
+{
+    for (int threads : {1, 2})
+        for (int n : {250, 1000, 4000})
+            b->Args({n, threads, 1});
+    b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+// Penetration against cost: the penalty frequency is capped at a tenth of the substep rate, so k
+// grows with the square of the substeps and the overlap under a load shrinks with it.
+void substep_args(benchmark::internal::Benchmark* b)
+{
+    for (int n : {250, 1000})
+        for (int substeps : {2, 3, 4})
+            b->Args({n, 1, substeps});
+    b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+} // namespace
+
+BENCHMARK_CAPTURE(BM_Pile, sphere, Shape::Sphere)->Apply(pile_args);
+BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
+BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);
+BENCHMARK_CAPTURE(BM_Pile, ellipsoid_substeps, Shape::Ellipsoid)->Apply(substep_args);

@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: MIT
+#include "contact/penalty.h"
+
+#include "modal/modal_world.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace supermodal
+{
+namespace
+{
+
+// Tangential spring frequency relative to the normal one, on the tangential effective mass (which
+// includes rotation about the centres of mass): below 1 so that a body held by several sticking
+// contacts (a box in a stack has two) stays inside the explicit stability region.
+constexpr double k_tangential_frequency_ratio = 0.7;
+// Damping ratio of the tangential spring: enough that a sticking contact does not ring, small enough
+// that the explicit dashpot of two contacts on one body does not overshoot (c·h/m < 1 each).
+constexpr double k_tangential_damping_ratio = 0.5;
+// Cap on a normal dashpot's c·h/m_eff [-]: two contacts on a box against each other stay below 1
+// (2 × 2 × 0.4 × m_eff/m = 0.8 with m_eff = m/2). At the default frequency (ωh = 0.63) restitutions
+// e ≥ 0.45 are not affected (c·h/m_eff = 2ζ·ωh ≤ 0.4 for ζ ≤ 0.32); lower ones bounce a little more.
+constexpr double k_max_dashpot_step = 0.4;
+
+// Restitution of the no-pull spring–dashpot x'' + 2ζx' + x = 0 (unit frequency): contact starts at
+// x = 0, x' = 1 and ends when the force x + 2ζx' first reaches zero, at ω_d·t = atan2(2ζω_d, 2ζ² − 1)
+// (ω_d = √(1 − ζ²)); e = −x'(t). The textbook exp(−ζπ/ω_d) ignores the clamp and asks for too little
+// damping (a 0.5 target bounced to 0.56, measured).
+double clamped_restitution(double zeta)
+{
+    if (zeta >= 1.0)
+        return 0.0;
+    const double wd = std::sqrt(1.0 - zeta * zeta);
+    const double phase = std::atan2(2.0 * zeta * wd, 2.0 * zeta * zeta - 1.0);
+    return -std::exp(-zeta * phase / wd) * (std::cos(phase) - zeta * std::sin(phase) / wd);
+}
+
+// ζ for restitution e, by bisection (e falls monotonically with ζ).
+double damping_ratio_for_restitution(double e)
+{
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 50; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (clamped_restitution(mid) > e ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// Inverse effective mass of a body at offset r for a push along unit d: 1/m + (r×d)·I⁻¹(r×d); for
+// d = 0 (any tangent direction) the bound 1/m + |r|²·max(I⁻¹) [1/kg].
+double inverse_mass_at(const BodyModel& m, const Pose& p, const Vec3& r, const Vec3& d)
+{
+    if (m.motion != MotionType::Dynamic)
+        return 0.0;
+    const Vec3& ii = m.inv_inertia_body;
+    if (d == Vec3{})
+        return m.inv_mass + dot(r, r) * std::max({ii.x, ii.y, ii.z});
+    const Vec3 rd = inv_rotate(principal_orientation(m, p.orientation), cross(r, d));
+    return m.inv_mass + dot(rd, hadamard(ii, rd));
+}
+
+// n·I⁻¹n in the world frame [1/(kg·m²)]: how easily the body turns about the contact normal.
+double inverse_twist_inertia(const BodyModel& m, const Pose& p, const Vec3& n)
+{
+    if (m.motion != MotionType::Dynamic)
+        return 0.0;
+    const Vec3 nb = inv_rotate(principal_orientation(m, p.orientation), n);
+    return dot(nb, hadamard(m.inv_inertia_body, nb));
+}
+
+} // namespace
+
+double ZetaCache::get(double e)
+{
+    for (const Entry& entry : entries)
+        if (entry.e == e)
+            return entry.zeta;
+    entries[next] = {e, damping_ratio_for_restitution(e)};
+    const double zeta = entries[next].zeta;
+    next = (next + 1) % entries.size();
+    return zeta;
+}
+
+PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const PenaltyBody& a,
+                       const PenaltyBody& b, std::span<const ContactPoint> points,
+                       const PairAnchor* old_anchor, ZetaCache& io_zeta, Registry* modal)
+{
+    PairForce out;
+    const BodyModel& ma = *a.model;
+    const BodyModel& mb = *b.model;
+    if (points.empty() || !(ma.inv_mass + mb.inv_mass > 0.0))
+        return out;
+    const Pose& pa = *a.pose;
+    const Pose& pb = *b.pose;
+    const Velocity& va = *a.velocity;
+    const Velocity& vb = *b.velocity;
+    Vec3 normal_sum{}, centroid{};
+    double weight_sum = 0.0;
+    for (const ContactPoint& cp : points) {
+        normal_sum += cp.weight * cp.normal;
+        centroid += cp.weight * cp.point;
+        weight_sum += cp.weight;
+    }
+    centroid = centroid / weight_sum;
+    const Vec3 n = normalized(normal_sum);
+    const Vec3 ra = centroid - pa.position, rb = centroid - pb.position;
+    // Effective masses at the contact, rotation included, so a push off the centre of mass (an edge,
+    // a corner) gets a spring its own inertia can carry at this substep.
+    // Modes are lighter than the rigid body: they join the effective mass (modal_inverse_mass).
+    auto modal_inv = [&](const Vec3& d) {
+        return modal == nullptr ? 0.0
+                                : modal_inverse_mass(*modal, pair.a, centroid, d, params.h) +
+                                      modal_inverse_mass(*modal, pair.b, centroid, d, params.h);
+    };
+    const double modal_n = modal_inv(n);
+    const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) + modal_n);
+    const double zeta = params.damping_ratio >= 0.0 ? params.damping_ratio
+                                                    : io_zeta.get(std::max(ma.restitution, mb.restitution));
+    const double omega = params.omega;
+    // The dashpot is explicit: a body feels the sum of its contacts' c·h/m_eff, and in a stack every
+    // middle box has two, whose Nyquist mode (neighbours moving against each other) flips the velocity
+    // every step once the sum passes 1 (measured: ten boxes, e = 0.2, c·h/m_eff = 0.92 per contact, in
+    // a period-2 limit cycle at 0.19 m/s). Capped at k_max_dashpot_step for rigid pairs. Not for pairs
+    // with a modal body: the modes absorb the dashpot's kick, and the cap starves them of damping
+    // (measured: a soft sphere kept bouncing at 0.2–0.3 m/s for 12 s with it, rests within 3 s without).
+    const double k = m_eff * omega * omega;
+    const double c_free = 2.0 * zeta * m_eff * omega;
+    const double c = modal_n > 0.0 ? c_free : std::min(c_free, k_max_dashpot_step * m_eff / params.h);
+
+    Vec3 total{}, torque_a{}, torque_b{};
+    double normal_force = 0.0, deepest = 0.0;
+    for (const ContactPoint& cp : points) {
+        const double vn =
+            dot(velocity_at(va, pa.position, cp.point) - velocity_at(vb, pb.position, cp.point), cp.normal);
+        // No pull: a separating contact whose dashpot would exceed its spring just lets go.
+        const double f = std::max(0.0, k * cp.depth - c * vn) * cp.weight;
+        const Vec3 fv = f * cp.normal;
+        total += fv;
+        torque_a += cross(cp.point - pa.position, fv);
+        torque_b -= cross(cp.point - pb.position, fv);
+        if (modal != nullptr) { // deforms modal bodies; a no-op for rigid ones
+            modal_add_point_load(*modal, pair.a, cp.point, fv);
+            modal_add_point_load(*modal, pair.b, cp.point, -1.0 * fv);
+        }
+        normal_force += f;
+        deepest = std::max(deepest, cp.depth);
+    }
+
+    // Friction: a tangential spring anchored where the contact stuck, clamped to the Coulomb cone.
+    const double mu = std::sqrt(ma.friction * mb.friction);
+    PairAnchor anchor{pair.key(), {}};
+    if (old_anchor != nullptr) {
+        anchor.spring = old_anchor->spring - dot(old_anchor->spring, n) * n; // keep it in today's plane
+        anchor.twist = old_anchor->twist;
+    }
+    const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
+    const Vec3 v_t = v_rel - dot(v_rel, n) * n;
+    const double m_t =
+        1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) + modal_inv({}));
+    const double omega_t = k_tangential_frequency_ratio * omega;
+    const double kt = m_t * omega_t * omega_t;
+    const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;
+    Vec3 ft = -kt * anchor.spring - ct * v_t;
+    const double limit = mu * normal_force;
+    if (length(ft) > limit) {
+        ft = limit > 0.0 ? ft * (limit / length(ft)) : Vec3{};
+        anchor.spring = limit > 0.0 ? -(ft + ct * v_t) / kt : Vec3{}; // slide: the anchor follows
+    }
+    torque_a += cross(centroid - pa.position, ft);
+    torque_b -= cross(centroid - pb.position, ft);
+    if (modal != nullptr) {
+        modal_add_point_load(*modal, pair.a, centroid, ft);
+        modal_add_point_load(*modal, pair.b, centroid, -1.0 * ft);
+    }
+    // Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
+    // friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the
+    // patch's second moment). Without it a single friction anchor lets a resting face spin up.
+    double patch_rho2 = 0.0;
+    for (const ContactPoint& cp : points) {
+        const Vec3 d = cp.point - centroid;
+        patch_rho2 += cp.weight * (dot(d, d) - dot(d, n) * dot(d, n)) / weight_sum;
+    }
+    const double inv_j = inverse_twist_inertia(ma, pa, n) + inverse_twist_inertia(mb, pb, n);
+    out.has_twist = patch_rho2 > 0.0 && inv_j > 0.0;
+    if (out.has_twist) {
+        const double j = 1.0 / inv_j;
+        const double k_tw = j * omega_t * omega_t, c_tw = 2.0 * k_tangential_damping_ratio * j * omega_t;
+        const double spin = dot(va.angular - vb.angular, n);
+        double tau = -k_tw * anchor.twist - c_tw * spin;
+        const double tau_limit = (2.0 / 3.0) * limit * std::sqrt(2.0 * patch_rho2);
+        if (std::abs(tau) > tau_limit) {
+            tau = std::copysign(tau_limit, tau);
+            anchor.twist = -(tau + c_tw * spin) / k_tw;
+        }
+        torque_a += tau * n;
+        torque_b -= tau * n;
+    } else {
+        anchor.twist = 0.0;
+    }
+    out.touching = true;
+    out.force_a = total + ft;
+    out.torque_a = torque_a;
+    out.torque_b = torque_b;
+    out.normal_force = normal_force;
+    out.anchor = anchor;
+    out.info = {.a = pair.a,
+                .b = pair.b,
+                .point = centroid,
+                .normal = n,
+                .depth = deepest,
+                .force_on_a = total + ft,
+                .point_count = static_cast<int>(points.size())};
+    return out;
+}
+
+} // namespace supermodal

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// Penalty force of one touching pair: normal spring–dashpot per point, one Cundall–Strack tangential
+// spring and one torsional spring at the force centroid. A pure function of the pair's points, the two
+// bodies and the pair's old anchor, so pairs can run on any thread; the caller adds the results to the
+// bodies in pair order.
+#pragma once
+
+#include "contact/broadphase.h"
+#include "contact/narrowphase.h"
+#include "supermodal/contact.h"
+#include "world/components.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace supermodal
+{
+
+/// Friction state of a touching pair: the tangential spring's extension (Cundall–Strack anchor).
+struct PairAnchor {
+    uint64_t key = 0;   ///< BodyPair::key().
+    Vec3 spring{};      ///< Tangential spring extension [m], world, in the contact plane.
+    double twist = 0.0; ///< Torsional spring angle about the contact normal [rad].
+};
+
+/// Memo of damping ratios per restitution (a 50-step bisection): a pure function, so hits and misses
+/// give the same bits. One per thread part.
+struct ZetaCache {
+    struct Entry {
+        double e = -1.0, zeta = 0.0;
+    };
+    std::array<Entry, 8> entries{};
+    size_t next = 0;
+    double get(double e);
+};
+
+/// One side of a pair as the penalty force sees it.
+struct PenaltyBody {
+    const BodyModel* model = nullptr;
+    const Pose* pose = nullptr;
+    const Velocity* velocity = nullptr;
+};
+
+/// What a pair does in one substep; written by one thread, added to the bodies in pair order.
+struct PairForce {
+    bool touching = false;     ///< The pair had points and a dynamic body.
+    bool has_twist = false;    ///< The torsional spring is active (its angle advances).
+    Vec3 force_a{};            ///< Total force on a [N], world; b gets −force_a.
+    Vec3 torque_a{};           ///< Torque on a about its centre of mass [N·m], world.
+    Vec3 torque_b{};           ///< Torque on b about its centre of mass [N·m], world.
+    double normal_force = 0.0; ///< Σ of the points' normal forces [N].
+    PairAnchor anchor{};       ///< The pair's anchor after this substep's forces (before the motion).
+    ContactInfo info{};        ///< The pair's summary for world_contacts().
+};
+
+/// Normal spring rate ω = 2π f [rad/s], damping override ζ (< 0 = from restitution).
+struct PenaltyParams {
+    double omega = 0.0;
+    double damping_ratio = -1.0;
+    double h = 0.0; ///< Substep [s].
+};
+
+/// The forces of a touching pair given its points (from b towards a); old_anchor is the pair's anchor
+/// from the last substep, or null. With `modal` (the world's registry, serial callers only), modal
+/// bodies' modes join the effective masses and take each point's force as a load.
+[[nodiscard]] PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const PenaltyBody& a,
+                                     const PenaltyBody& b, std::span<const ContactPoint> points,
+                                     const PairAnchor* old_anchor, ZetaCache& io_zeta,
+                                     Registry* modal = nullptr);
+
+/// Velocity of the body point `point` [m/s], world.
+[[nodiscard]] inline Vec3 velocity_at(const Velocity& v, const Vec3& centre, const Vec3& point)
+{
+    return v.linear + cross(v.angular, point - centre);
+}
+
+} // namespace supermodal
