@@ -24,18 +24,19 @@ struct ConstraintModel {
     Vec3 axis_a{0, 0, 1};     ///< Unit limit axis, a's frame.
 };
 
-/// Doubles per constraint in a Snapshot: broken flag, linear impulse (3), angular impulse (3), limits (2).
-inline constexpr size_t k_values_per_constraint = 9;
+/// Doubles per constraint in a Snapshot: broken flag, linear impulse (3), angular impulse (3), limits (2 ×
+/// 3).
+inline constexpr size_t k_values_per_constraint = 13;
 
 /// State and derived values. `broken` and the impulses (which warm-start the next substep) are state:
 /// hashed and snapshotted; the rest is recomputed.
 struct ConstraintState {
     bool broken = false;
-    Vec3 impulse{};            ///< Linear impulse on a in the last substep [N·s], world.
-    Vec3 ang_impulse{};        ///< Angular impulse on b (weld) [N·m·s], world.
-    double limit_impulse[2]{}; ///< Swing, twist limit impulses [N·m·s] (0 when not at the limit).
-    ConstraintError error{};   ///< Derived: after the last substep.
-    Vec3 force_on_a{};         ///< Derived: last substep [N].
+    Vec3 impulse{};          ///< Linear impulse on a in the last substep [N·s], world.
+    Vec3 ang_impulse{};      ///< Angular impulse on b (weld) [N·m·s], world.
+    Vec3 limit_impulse[2]{}; ///< Swing, twist limit angular impulses on a [N·m·s], world (λ·axis).
+    ConstraintError error{}; ///< Derived: after the last substep.
+    Vec3 force_on_a{};       ///< Derived: last substep [N].
 };
 
 using ConstraintRegistry = BasicRegistry<ConstraintModel, ConstraintState>;

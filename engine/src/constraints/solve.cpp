@@ -17,6 +17,9 @@ namespace supermodal
 namespace
 {
 
+// Below this norm of the twist part (a swing within ~11° of a half turn) the twist is not measured.
+constexpr double k_twist_singular = 0.1;
+
 struct Side {
     const BodyModel* m = nullptr;
     const Pose* p = nullptr;
@@ -128,7 +131,9 @@ void swing_twist(const Quat& r, const Vec3& axis, Vec3& out_swing, double& out_t
     const double proj = r.x * axis.x + r.y * axis.y + r.z * axis.z;
     Quat twist{r.w, proj * axis.x, proj * axis.y, proj * axis.z};
     const double n = norm(twist);
-    twist = n > 1e-12 ? Quat{twist.w / n, twist.x / n, twist.y / n, twist.z / n} : Quat{};
+    // Near a half-turn swing (n → 0) the split is singular and the twist meaningless: report none
+    // rather than a twist that jumps between substeps (it pumped energy into a joint without swing limit).
+    twist = n > k_twist_singular ? Quat{twist.w / n, twist.x / n, twist.y / n, twist.z / n} : Quat{};
     out_twist = dot(rotation_vector(twist), axis);
     out_swing = rotation_vector(r * conjugate(twist));
 }
@@ -271,7 +276,10 @@ void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
     if (r.has_ang_mass)
         r.ang_impulse = st.ang_impulse;
     for (int i = 0; i < 2; ++i)
-        r.limit_impulse[i] = r.limit_active[i] ? st.limit_impulse[i] : 0.0;
+        // As a vector, projected on today's axis: the swing axis turns, and the twist axis flips sign
+        // as the twist passes zero; a scalar would push the old amount along the new axis.
+        r.limit_impulse[i] =
+            r.limit_active[i] ? std::max(0.0, dot(st.limit_impulse[i], r.limit_axis[i])) : 0.0;
     apply_row(r, 1.0);
 }
 
@@ -341,9 +349,18 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
         const double swing_angle = length(swing);
         if (d.swing_limit >= 0.0 && swing_angle > 1e-12)
             add_limit(0, rotate(qa, swing / swing_angle), swing_angle - d.swing_limit);
-        if (d.twist_limit >= 0.0)
-            add_limit(1, rotate(qa, twist >= 0.0 ? c.axis_a : -1.0 * c.axis_a),
-                      std::abs(twist) - d.twist_limit);
+        if (d.twist_limit >= 0.0) {
+            // The twist turns about the axis as each body carries it (a's axis, and the same axis swung
+            // onto b): their bisector is the direction whose relative spin changes the twist; a's axis
+            // alone is wrong once the joint swings and pumped energy into a twist-limited joint.
+            const Vec3 axis_on_a = rotate(qa, c.axis_a);
+            const Vec3 axis_on_b = rotate(qa, rotate(quat_from_rotation_vector(swing), c.axis_a));
+            const Vec3 bisector = axis_on_a + axis_on_b;
+            if (length(bisector) > 1e-6) {
+                const Vec3 axis_w = normalized(bisector);
+                add_limit(1, twist >= 0.0 ? axis_w : -1.0 * axis_w, std::abs(twist) - d.twist_limit);
+            }
+        }
     }
     warm_start(r, st, d);
     if (d.angular_damping > 0.0)
@@ -395,8 +412,8 @@ void apply_constraint_forces(const StepContext& ctx, Registry& bodies, Constrain
         st.force_on_a = r.impulse / h;
         st.impulse = r.impulse;
         st.ang_impulse = r.ang_impulse;
-        st.limit_impulse[0] = r.limit_impulse[0];
-        st.limit_impulse[1] = r.limit_impulse[1];
+        st.limit_impulse[0] = r.limit_impulse[0] * r.limit_axis[0];
+        st.limit_impulse[1] = r.limit_impulse[1] * r.limit_axis[1];
     }
 }
 

@@ -83,8 +83,10 @@ void unpack(World::Impl& w, Entity e, const double* in)
 void pack_constraint(const ConstraintState& c, std::vector<double>& out)
 {
     const double values[k_values_per_constraint] = {
-        c.broken ? 1.0 : 0.0, c.impulse.x,     c.impulse.y,        c.impulse.z,       c.ang_impulse.x,
-        c.ang_impulse.y,      c.ang_impulse.z, c.limit_impulse[0], c.limit_impulse[1]};
+        c.broken ? 1.0 : 0.0, c.impulse.x,          c.impulse.y,          c.impulse.z,
+        c.ang_impulse.x,      c.ang_impulse.y,      c.ang_impulse.z,      c.limit_impulse[0].x,
+        c.limit_impulse[0].y, c.limit_impulse[0].z, c.limit_impulse[1].x, c.limit_impulse[1].y,
+        c.limit_impulse[1].z};
     out.insert(out.end(), values, values + k_values_per_constraint);
 }
 
@@ -93,8 +95,8 @@ void unpack_constraint(const double* in, ConstraintState& c)
     c.broken = in[0] != 0.0;
     c.impulse = {in[1], in[2], in[3]};
     c.ang_impulse = {in[4], in[5], in[6]};
-    c.limit_impulse[0] = in[7];
-    c.limit_impulse[1] = in[8];
+    c.limit_impulse[0] = {in[7], in[8], in[9]};
+    c.limit_impulse[1] = {in[10], in[11], in[12]};
 }
 
 } // namespace
