@@ -32,6 +32,30 @@ sm::ConstraintDef hang_from_world(sm::Entity body, sm::Vec3 world_point, sm::Vec
     return c;
 }
 
+// A static 5 cm base at (0, 2, 0) and, below it, a limb of `radii` whose top end (0.2 m above its
+// centre) sits at the base, spinning rigidly about that end at `omega` [rad/s] (v = ω × r).
+sm::Entity add_limb(sm::World& w, sm::Vec3 radii, sm::Vec3 omega)
+{
+    sm::BodyDef base_def = ellipsoid_def({0.05, 0.05, 0.05}, {0, 2, 0});
+    base_def.motion = sm::MotionType::Static;
+    (void)sm::create_body(w, base_def);
+    sm::BodyDef limb_def = ellipsoid_def(radii, {0, 1.8, 0});
+    limb_def.angular_velocity = omega;
+    limb_def.linear_velocity = sm::cross(omega, sm::Vec3{0, -0.2, 0});
+    return sm::create_body(w, limb_def);
+}
+
+// The ball joint from add_limb's base (the first body) to the limb's top end, limit axis down.
+sm::ConstraintDef limb_joint(const sm::World& w, sm::Entity limb)
+{
+    sm::ConstraintDef c = sm::default_constraint_def();
+    c.a = sm::world_bodies(w).front();
+    c.b = limb;
+    c.anchor_b.point = {0, 0.2, 0};
+    c.axis_a = {0, -1, 0};
+    return c;
+}
+
 } // namespace
 
 // A ball hanging from a world point sags by m·g/k = g/ω² (k = m·ω² for a point mass): with f = 30 Hz,
@@ -206,18 +230,8 @@ TEST(ConstraintSolve, WeldHoldsCantileverOrientation)
 TEST(ConstraintSolve, SwingLimitStopsLimb)
 {
     sm::World w = make_world();
-    sm::BodyDef base_def = ellipsoid_def({0.05, 0.05, 0.05}, {0, 2, 0});
-    base_def.motion = sm::MotionType::Static;
-    const sm::Entity base = sm::create_body(w, base_def);
-    sm::BodyDef limb_def = ellipsoid_def({0.05, 0.2, 0.05}, {0, 1.8, 0});
-    limb_def.angular_velocity = {0, 0, 8.0};
-    limb_def.linear_velocity = {1.6, 0, 0}; // rigid rotation about the joint: v = ω × r
-    const sm::Entity limb = sm::create_body(w, limb_def);
-    sm::ConstraintDef c = sm::default_constraint_def();
-    c.a = base;
-    c.b = limb;
-    c.anchor_b.point = {0, 0.2, 0};
-    c.axis_a = {0, -1, 0};
+    const sm::Entity limb = add_limb(w, {0.05, 0.2, 0.05}, {0, 0, 8.0});
+    sm::ConstraintDef c = limb_joint(w, limb);
     c.swing_limit = 0.3;
     c.frequency_hz = 30.0;
     c.damping_ratio = 1.0;
@@ -262,18 +276,9 @@ TEST(ConstraintSolve, BreakForceBreaksAndIsState)
 TEST(ConstraintSolve, TwistLimitedJointDoesNotGainEnergy)
 {
     sm::World w = make_world();
-    sm::BodyDef base_def = ellipsoid_def({0.05, 0.05, 0.05}, {0, 2, 0});
-    base_def.motion = sm::MotionType::Static;
-    const sm::Entity base = sm::create_body(w, base_def);
-    sm::BodyDef limb_def = ellipsoid_def({0.05, 0.2, 0.03}, {0, 1.8, 0});
-    limb_def.angular_velocity = {6.0, 3.0, 9.0}; // swing about x and z, twist about y
-    limb_def.linear_velocity = sm::cross(limb_def.angular_velocity, sm::Vec3{0, -0.2, 0});
-    const sm::Entity limb = sm::create_body(w, limb_def);
-    sm::ConstraintDef c = sm::default_constraint_def();
-    c.a = base;
-    c.b = limb;
-    c.anchor_b.point = {0, 0.2, 0};
-    c.axis_a = {0, -1, 0};
+    // Swing about x and z, twist about y.
+    const sm::Entity limb = add_limb(w, {0.05, 0.2, 0.03}, {6.0, 3.0, 9.0});
+    sm::ConstraintDef c = limb_joint(w, limb);
     c.twist_limit = 0.1;
     c.frequency_hz = 60.0;
     c.damping_ratio = 1.0;

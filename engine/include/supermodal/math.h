@@ -128,6 +128,28 @@ struct Mat3 {
     return r;
 }
 
+/// The cross-product matrix: skew(a)·v = a × v.
+[[nodiscard]] constexpr Mat3 skew(const Vec3& a)
+{
+    Mat3 s;
+    s.m[0][1] = -a.z;
+    s.m[0][2] = a.y;
+    s.m[1][0] = a.z;
+    s.m[1][2] = -a.x;
+    s.m[2][0] = -a.y;
+    s.m[2][1] = a.x;
+    return s;
+}
+/// a + s·b, element by element.
+[[nodiscard]] constexpr Mat3 add_scaled(const Mat3& a, const Mat3& b, double s)
+{
+    Mat3 r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r.m[i][j] = a.m[i][j] + s * b.m[i][j];
+    return r;
+}
+
 /// A rotation as a unit quaternion [w, x, y, z] (Euler parameters).
 struct Quat {
     double w = 1.0, x = 0.0, y = 0.0, z = 0.0;

@@ -36,27 +36,6 @@ Mat3 world_inv_inertia(const BodyModel& m, const Pose& p)
     return r * Mat3::diagonal(m.inv_inertia_body) * transpose(r);
 }
 
-Mat3 skew(const Vec3& a)
-{
-    Mat3 s;
-    s.m[0][1] = -a.z;
-    s.m[0][2] = a.y;
-    s.m[1][0] = a.z;
-    s.m[1][2] = -a.x;
-    s.m[2][0] = -a.y;
-    s.m[2][1] = a.x;
-    return s;
-}
-
-Mat3 add(const Mat3& a, const Mat3& b, double sb = 1.0)
-{
-    Mat3 r;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            r.m[i][j] = a.m[i][j] + sb * b.m[i][j];
-    return r;
-}
-
 // Inverse of a symmetric 3×3 by cofactors; false when (nearly) singular.
 bool invert(const Mat3& a, Mat3& out)
 {
@@ -121,7 +100,7 @@ Mat3 point_mass_inverse(const Side& a, const Side& b)
         k.m[i][i] = a.inv_mass + b.inv_mass;
     for (const Side* s : {&a, &b})
         if (s->inv_mass > 0.0)
-            k = add(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
+            k = add_scaled(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
     return k;
 }
 
@@ -289,7 +268,7 @@ void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
 void damp_relative_spin(Row& r, double rate_h)
 {
     Mat3 inertia;
-    if (!invert(add(r.a.inv_inertia, r.b.inv_inertia), inertia))
+    if (!invert(add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0), inertia))
         return;
     const Vec3 spin = angular_velocity(r.b) - angular_velocity(r.a);
     const Vec3 l = -(rate_h / (1.0 + rate_h)) * (inertia * spin);
@@ -327,7 +306,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
         // Orientation error of b against where the weld holds it, as a world rotation vector.
         r.theta = rotation_vector(qb * conjugate(qa * c.rest_relative));
         st.error.angular = length(r.theta);
-        r.has_ang_mass = invert(add(r.a.inv_inertia, r.b.inv_inertia), r.ang_mass);
+        r.has_ang_mass = invert(add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0), r.ang_mass);
     } else if (d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0)) {
         const Quat rel = conjugate(qa) * qb * conjugate(c.rest_relative); // a's frame
         Vec3 swing{};

@@ -132,9 +132,7 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
     if (!io.excluded_pairs.empty()) // jointed parts and parent–child pairs
         std::erase_if(io.pairs, [&](const BodyPair& pair) {
-            const uint64_t key =
-                (uint64_t{std::min(pair.a.index, pair.b.index)} << 32) | std::max(pair.a.index, pair.b.index);
-            return std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), key);
+            return std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), pair.key());
         });
     // A plane's box is unbounded, so the sweep pairs it with every body; keep only the bodies whose
     // swept box reaches into its half-space (else a pile in a box of planes runs five plane tests per

@@ -13,18 +13,6 @@ namespace
 constexpr double k_newton_rel_tol = 1e-14;
 constexpr int k_newton_max_iterations = 20;
 
-Mat3 skew(const Vec3& a)
-{
-    Mat3 s;
-    s.m[0][1] = -a.z;
-    s.m[0][2] = a.y;
-    s.m[1][0] = a.z;
-    s.m[1][2] = -a.x;
-    s.m[2][0] = -a.y;
-    s.m[2][1] = a.x;
-    return s;
-}
-
 // Solves A x = b by Cramer's rule; returns false for a (numerically) singular A.
 bool solve3(const Mat3& a, const Vec3& b, Vec3& out_x)
 {
@@ -34,15 +22,6 @@ bool solve3(const Mat3& a, const Vec3& b, Vec3& out_x)
         return false;
     out_x = Vec3{dot(b, cross(c1, c2)), dot(c0, cross(b, c2)), dot(c0, cross(c1, b))} / det;
     return true;
-}
-
-Mat3 add_scaled(const Mat3& a, const Mat3& b, double s)
-{
-    Mat3 r;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            r.m[i][j] = a.m[i][j] + s * b.m[i][j];
-    return r;
 }
 
 // Implicit midpoint: Π' = Π + h·(Π_m × D Π_m), Π_m = (Π + Π')/2, D = I⁻¹. True if converged.
