@@ -322,6 +322,10 @@ TEST(SceneLoaderErrors, ConstraintsNameTheirPointer)
     EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seta"}]})", "/constraints/0/a",
                          "no body named \"seta\"; did you mean \"seat\"?"));
     EXPECT_TRUE(fails_at(two + R"({"type": "hinge", "a": "seat"}]})", "/constraints/0/type", "hinge"));
+    EXPECT_TRUE(fails_at(R"({"bodies": [{"name": "leg", "parent": "seat", "shape": {"type": "superquadric",
+                          "radii": [1, 1, 1]}}, {"name": "seat", "shape": {"type": "superquadric", "radii": [1, 1, 1]}}]})",
+                         "/bodies/0/parent",
+                         "no earlier body named \"seat\" (a parent is listed before its children)"));
     EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "b": "seat"}]})", "/constraints/0/b",
                          "two different bodies"));
     EXPECT_TRUE(fails_at(two + R"({"type": "point", "a": "seat", "frequency": 0}]})",

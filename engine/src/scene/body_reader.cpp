@@ -315,23 +315,6 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
                                quote_text(k_motion_names[static_cast<size_t>(out_body.def.motion)]));
 }
 
-// A parent is an earlier body of the scene: the child's pose is read in the parent's frame.
-void read_parent(Reader& r, const Json& value, const std::string& where, const Scene& scene,
-                 SceneBody& out_body)
-{
-    r.read_string(value, where, out_body.parent);
-    if (!r.ok())
-        return;
-    std::vector<std::string_view> names;
-    for (const SceneBody& b : scene.bodies) {
-        if (b.def.name == out_body.parent)
-            return;
-        names.push_back(b.def.name);
-    }
-    r.fail(where, "no earlier body named " + quote_text(out_body.parent) +
-                      " (a parent is listed before its children)" + did_you_mean(out_body.parent, names));
-}
-
 void read_body(Reader& r, const Json& body, const std::string& where, const Scene& scene,
                const MaterialIndex& materials, SceneBody& out_body)
 {
@@ -363,11 +346,29 @@ void read_body(Reader& r, const Json& body, const std::string& where, const Scen
     r.field_vec3(body, where, "angular_velocity", any_number(), def.angular_velocity);
     r.field_number(body, where, "gravity_scale", any_number(), def.gravity_scale);
     if (const Json* parent = r.member(body, "parent"))
-        read_parent(r, *parent, pointer_join(where, "parent"), scene, out_body);
+        // An earlier body: the child's pose is read in the parent's frame.
+        read_body_name(r, *parent, pointer_join(where, "parent"), scene, out_body.parent,
+                       "no earlier body named", " (a parent is listed before its children)");
     read_dynamics(r, body, where, scene, materials, out_body);
 }
 
 } // namespace
+
+void read_body_name(Reader& r, const Json& value, const std::string& where, const Scene& scene,
+                    std::string& out_name, std::string_view missing, std::string_view note)
+{
+    r.read_string(value, where, out_name);
+    if (!r.ok())
+        return;
+    std::vector<std::string_view> names;
+    for (const SceneBody& b : scene.bodies) {
+        if (b.def.name == out_name)
+            return;
+        names.push_back(b.def.name);
+    }
+    r.fail(where, std::string(missing) + " " + quote_text(out_name) + std::string(note) +
+                      did_you_mean(out_name, names));
+}
 
 void read_bodies(Reader& reader, const Json& root, Scene& out_scene)
 {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "scene/constraint_reader.h"
 
-#include "scene/did_you_mean.h"
+#include "scene/body_reader.h"
 
 #include <cmath>
 
@@ -68,21 +68,6 @@ void read_anchor(Reader& r, const Json& value, const std::string& where, AnchorD
         r.fail(where, "expected exactly one of \"point\", \"direction\" or \"surface\"");
 }
 
-void read_body_name(Reader& r, const Json& value, const std::string& where, const Scene& scene,
-                    std::string& out_name)
-{
-    r.read_string(value, where, out_name);
-    if (!r.ok())
-        return;
-    std::vector<std::string_view> names;
-    for (const SceneBody& b : scene.bodies) {
-        if (b.def.name == out_name)
-            return;
-        names.push_back(b.def.name);
-    }
-    r.fail(where, "no body named " + quote_text(out_name) + did_you_mean(out_name, names));
-}
-
 void read_constraint(Reader& r, const Json& value, const std::string& where, const Scene& scene,
                      SceneConstraint& out)
 {
@@ -97,9 +82,9 @@ void read_constraint(Reader& r, const Json& value, const std::string& where, con
         d.type = static_cast<ConstraintType>(index);
     }
     if (const Json* a = r.require(value, where, "a"))
-        read_body_name(r, *a, pointer_join(where, "a"), scene, out.body_a);
+        read_body_name(r, *a, pointer_join(where, "a"), scene, out.body_a, "no body named");
     if (const Json* b = r.member(value, "b"); b != nullptr && !(b->is_string() && *b == "world"))
-        read_body_name(r, *b, pointer_join(where, "b"), scene, out.body_b);
+        read_body_name(r, *b, pointer_join(where, "b"), scene, out.body_b, "no body named");
     if (r.ok() && out.body_a == out.body_b)
         return r.fail(pointer_join(where, "b"),
                       "a constraint needs two different bodies, found " + quote_text(out.body_b) + " twice");
