@@ -7,6 +7,7 @@
 #include "supermodal/constraint.h"
 #include "supermodal/contact.h"
 #include "supermodal/entity.h"
+#include "supermodal/fault.h"
 #include "supermodal/geometry.h"
 #include "supermodal/hierarchy.h"
 #include "supermodal/math.h"

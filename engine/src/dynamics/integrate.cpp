@@ -64,7 +64,7 @@ void store_previous_poses(Registry& reg)
     }
 }
 
-void freeze_non_finite(Registry& reg, StepWarnings& io_warnings)
+void freeze_non_finite(const StepContext& ctx, Stage stage, Registry& reg, StepWarnings& io_warnings)
 {
     reg.each<BodyModel, Velocity, Pose>([&](Entity e, BodyModel& body, Velocity& vel, Pose& pose) {
         if (is_finite(pose.position) && is_finite(pose.orientation) && is_finite(vel.linear) &&
@@ -82,6 +82,8 @@ void freeze_non_finite(Registry& reg, StepWarnings& io_warnings)
         body.inv_inertia_body = Vec3{};
         ++io_warnings.non_finite_bodies;
         io_warnings.last_non_finite = e;
+        if (ctx.faults != nullptr)
+            ctx.faults->record(FaultKind::BodyNonFinite, e, stage);
     });
 }
 

@@ -6,6 +6,7 @@
 #include "supermodal/math.h"
 #include "supermodal/world.h"
 #include "world/components.h"
+#include "world/faults.h"
 
 namespace supermodal
 {
@@ -15,6 +16,7 @@ struct StepContext {
     double h = 0.0; ///< Substep length [s].
     Vec3 gravity{}; ///< [m/s²], world.
     int substep_count = 1;
+    FaultLog* faults = nullptr; ///< Where the guards report NaN/Inf, or null.
 };
 
 [[nodiscard]] StepContext make_step_context(const WorldDef& def);
@@ -28,8 +30,8 @@ void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io
 /// non-finite guard falls back to it.
 void store_previous_poses(Registry& reg);
 /// Freezes bodies whose state is no longer finite (zero velocity, last finite pose, kinematic), so a
-/// fault never spreads; counts each in io_warnings.
-void freeze_non_finite(Registry& reg, StepWarnings& io_warnings);
+/// fault never spreads; counts each in io_warnings and logs it (as found after `stage`) when ctx has a log.
+void freeze_non_finite(const StepContext& ctx, Stage stage, Registry& reg, StepWarnings& io_warnings);
 /// Clears host forces once a step has used them.
 void clear_forces(Registry& reg);
 

@@ -184,7 +184,7 @@ void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, c
 void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings)
 {
     const double h = ctx.h;
-    reg.each<ModalBody>([&](Entity, ModalBody& b) {
+    reg.each<ModalBody>([&](Entity e, ModalBody& b) {
         const size_t r = b.q.size();
         if (b.step_h != h) {
             b.exact_steps.resize(r);
@@ -224,6 +224,8 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
             std::fill(b.q.begin(), b.q.end(), 0.0);
             std::fill(b.q_dot.begin(), b.q_dot.end(), 0.0);
             ++io_warnings.modal_non_finite;
+            if (ctx.faults != nullptr)
+                ctx.faults->record(FaultKind::ModalNonFinite, e, Stage::ModalUpdate);
         }
         std::fill(b.load.begin(), b.load.end(), 0.0);
         b.surface_stale = true;

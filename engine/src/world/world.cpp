@@ -111,23 +111,38 @@ void World::Impl::step()
     StepContext ctx = make_step_context(def);
     ctx.substep_count = substeps;
     ctx.h = def.dt / substeps;
+    ctx.faults = &faults;
+    faults.events.clear();
+    faults.step = step_count;
+    // Guards run after every stage that writes velocities or poses, so a body that turns NaN/Inf is
+    // frozen before any later stage (or neighbour) reads it.
     for (int i = 0; i < ctx.substep_count; ++i) {
-        run(Stage::IntegrateForces, [&] { integrate_forces(ctx, reg); });
+        faults.substep = i;
+        run(Stage::IntegrateForces, [&] {
+            integrate_forces(ctx, reg);
+            freeze_non_finite(ctx, Stage::IntegrateForces, reg, warnings);
+        });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, pool.get(), contact); });
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, pool.get(), contact, warnings);
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
+            freeze_non_finite(ctx, Stage::PenaltyForces, reg, warnings);
         });
         run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
-        run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
+        run(Stage::IntegratePositions, [&] {
+            integrate_positions(ctx, reg, warnings);
+            freeze_non_finite(ctx, Stage::IntegratePositions, reg, warnings);
+        });
         run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
     }
     run(Stage::Events, [&] {
-        freeze_non_finite(reg, warnings);
         clear_forces(reg);
         clear_modal_forces(reg);
         publish_events(contact.events, contact.pairs, contact.contacts);
+        if (faults.callback != nullptr)
+            for (const FaultEvent& f : faults.events)
+                faults.callback(f, faults.user_data);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;

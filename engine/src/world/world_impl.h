@@ -6,6 +6,7 @@
 #include "core/thread_pool.h"
 #include "supermodal/world.h"
 #include "world/components.h"
+#include "world/faults.h"
 
 namespace supermodal
 {
@@ -21,6 +22,7 @@ struct World::Impl {
     double accumulator = 0.0; ///< Real time not yet stepped [s].
     StepProfile profile{};
     StepWarnings warnings{};
+    FaultLog faults;                                        ///< Scratch: this step's NaN/Inf faults.
     ConstraintWorld constraints;                            ///< Penalty constraints (model + state).
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
