@@ -15,7 +15,7 @@ cmake --build "$build" -j "$(nproc)" --target soak
 
 out=docs/soak
 mkdir -p "$out"
-for scene in chair_with_dummy pile; do
+for scene in pile chair_with_dummy; do
   echo "soak: $scene, ${seconds} s simulated" >&2
   "$build/bench/soak" "samples/$scene.json" "$seconds" "$every" >"$out/$scene.csv"
 done
