@@ -1,0 +1,56 @@
+// Per-sample state hashes after N steps, pinned (issue #11): any change to the physics, the scene
+// files or the hash itself shows up here. When a change is meant, update the table with the values
+// the failure prints and give the reason in the commit message.
+#include "supermodal/scene.h"
+#include "supermodal/world.h"
+
+#include <cinttypes>
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <string>
+
+namespace sm = supermodal;
+
+namespace
+{
+
+struct Pinned {
+    const char* scene; ///< samples/<scene>.json
+    int steps;
+    uint64_t hash;
+};
+
+// Recorded 2026-11-25 (fault guards per stage, samples/pile.json added).
+constexpr Pinned k_pinned[] = {
+    {"demo", 400, 0x0a334b7c2ef6ba0bULL},
+    {"chair_with_dummy", 500, 0x88eff1fdc9933477ULL},
+    {"ball_on_board", 400, 0xf935d469aefffe8dULL},
+    {"pile", 240, 0x70665f6b73224719ULL},
+};
+
+class PinnedHash : public testing::TestWithParam<Pinned>
+{
+};
+
+} // namespace
+
+TEST_P(PinnedHash, MatchesTheRecordedValue)
+{
+    const Pinned& p = GetParam();
+    sm::Result<sm::Scene> scene =
+        sm::load_scene(std::string(SM_SOURCE_DIR) + "/samples/" + p.scene + ".json");
+    ASSERT_TRUE(scene) << scene.error().message();
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    for (int i = 0; i < p.steps; ++i)
+        world->step();
+    char got[32];
+    std::snprintf(got, sizeof got, "0x%016" PRIx64, world->state_hash());
+    EXPECT_EQ(world->state_hash(), p.hash) << p.scene << " after " << p.steps << " steps: now " << got
+                                           << "ULL; update k_pinned if the change is meant";
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, PinnedHash, testing::ValuesIn(k_pinned),
+                         [](const testing::TestParamInfo<Pinned>& info) {
+                             return std::string(info.param.scene);
+                         });
