@@ -92,6 +92,11 @@ struct Row {
     double limit_excess[2]{};  ///< [rad], > 0 when violated.
     double limit_mass[2]{};    ///< [kg·m²].
     double limit_impulse[2]{}; ///< Accumulated, ≥ 0 (pushes back only) [N·m·s].
+    // Joint friction: relative spin + compliance·impulse = 0, solved with the other rows.
+    bool has_friction = false;
+    Mat3 friction_compliance{}; ///< (h·C)⁻¹ [1/(kg·m²)], C the friction coefficient [N·m·s].
+    Mat3 friction_mass{};       ///< (Ia⁻¹ + Ib⁻¹ + (h·C)⁻¹)⁻¹ [kg·m²].
+    Vec3 friction_impulse{};    ///< Accumulated angular impulse on b [N·m·s].
 };
 
 // Applies the row's accumulated impulses times `sign` (−1 takes them back).
@@ -103,6 +108,8 @@ void apply_row(Row& r, double sign)
         push_rigid_spin(r.a, sign * r.limit_impulse[i] * r.limit_axis[i]);
         push_rigid_spin(r.b, -sign * r.limit_impulse[i] * r.limit_axis[i]);
     }
+    push_rigid_spin(r.a, -sign * r.friction_impulse);
+    push_rigid_spin(r.b, sign * r.friction_impulse);
 }
 
 void solve_linear(Row& r, const ConstraintDef& d)
@@ -170,18 +177,47 @@ void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
     apply_row(r, 1.0);
 }
 
-// Joint friction: the relative spin of the two parts decays at `rate_h`/h per second, integrated
-// implicitly (factor rate_h/(1 + rate_h)) so any rate is stable. Without it a ball joint swings freely
-// and a hanging limb rocks for a long time.
-void damp_relative_spin(Row& r, double rate_h)
+// Inverse inertia of a dynamic side about its anchor [1/(kg·m²)]: I + m(|r|²·1 − r rᵀ) (parallel axes),
+// inverted; zero for the world and non-dynamic bodies.
+Mat3 inverse_inertia_about_anchor(const Side& s)
 {
-    Mat3 inertia;
-    if (!invert(add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0), inertia))
+    Mat3 inertia, out;
+    if (s.inv_mass == 0.0 || !invert(s.inv_inertia, inertia))
+        return out;
+    const Mat3 arm = skew(s.r) * skew(s.r); // r rᵀ − |r|²·1
+    return invert(add_scaled(inertia, arm, -1.0 / s.inv_mass), out) ? out : Mat3{};
+}
+
+// Joint friction: a torque −C·(ω_b − ω_a) with C = rate·(Ia,p⁻¹ + Ib,p⁻¹)⁻¹ from the parts' inertias
+// about the joint, so a limb swinging on the joint slows at `rate` (angular_damping [1/s]). It is a soft
+// row solved with the joint's other rows (ω_rel + (h·C)⁻¹·λ = 0: implicit, any rate is stable). An
+// impulse that removed the relative spin about the centres of mass alone, before the passes, was mostly
+// undone by the ball joint: measured on a hanging three-link arm, its swing kept 1 cm/s after 7 s.
+void setup_friction(Row& r, double rate, double h)
+{
+    Mat3 pivot_inertia, compliance, mass;
+    const Mat3 k_pivot =
+        add_scaled(inverse_inertia_about_anchor(r.a), inverse_inertia_about_anchor(r.b), 1.0);
+    if (!invert(k_pivot, pivot_inertia))
+        return;
+    if (!invert(add_scaled(Mat3{}, pivot_inertia, rate * h), compliance))
+        return;
+    if (!invert(add_scaled(add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0), compliance, 1.0), mass))
+        return;
+    r.has_friction = true;
+    r.friction_compliance = compliance;
+    r.friction_mass = mass;
+}
+
+void solve_friction(Row& r)
+{
+    if (!r.has_friction)
         return;
     const Vec3 spin = angular_velocity(r.b) - angular_velocity(r.a);
-    const Vec3 l = -(rate_h / (1.0 + rate_h)) * (inertia * spin);
-    push_rigid_spin(r.a, -1.0 * l);
-    push_rigid_spin(r.b, l);
+    const Vec3 dl = -1.0 * (r.friction_mass * (spin + r.friction_compliance * r.friction_impulse));
+    r.friction_impulse += dl;
+    push_rigid_spin(r.a, -1.0 * dl);
+    push_rigid_spin(r.b, dl);
 }
 
 bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
@@ -254,7 +290,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
     }
     warm_start(r, st, d);
     if (d.angular_damping > 0.0)
-        damp_relative_spin(r, d.angular_damping * h);
+        setup_friction(r, d.angular_damping, h);
     return true;
 }
 
@@ -288,6 +324,7 @@ void apply_constraint_forces(const StepContext& ctx, Registry& bodies, Constrain
             if (r.has_mass)
                 solve_linear(r, d);
             solve_angular(r);
+            solve_friction(r);
         }
     for (Row& r : rows) {
         ConstraintState& st = cw.reg.get<ConstraintState>(r.id);

@@ -118,6 +118,7 @@ void World::Impl::step()
             apply_penalty_forces(def, ctx, reg, pool.get(), contact, warnings);
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
+            update_contact_anchors(ctx, reg, pool.get(), contact);
         });
         run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
         run(Stage::IntegratePositions, [&] { integrate_positions(ctx, reg, warnings); });
