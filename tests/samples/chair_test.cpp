@@ -37,13 +37,27 @@ double speed(const sm::World& w, const char* name)
 
 } // namespace
 
-// The dummy lands on the seat and stays there; the chair stands; its welds hold to 1 mm.
+// The dummy lands on the seat, stays there and comes to rest; the chair stands; every constraint holds
+// to 1 mm (the issue's bounds).
 TEST(ChairSample, DummyEndsUpSittingOnTheSeat)
 {
     sm::World w = load("samples/chair_with_dummy.json");
     ASSERT_EQ(sm::world_bodies(w).size(), 1u + 6u + 15u);
     ASSERT_EQ(sm::world_constraints(w).size(), 5u + 14u);
-    run_for(w, 4.0);
+    run_for(w, 7.0);
+    // At rest: every part under 1 cm/s over 7.0–7.5 s. Measured (2026-11-25): the limbs swing down and
+    // stop by about 6.5 s (joint friction 20/s), the largest speed over 7–8 s is 4.7 mm/s. Before the
+    // friction anchors followed the constraint impulses the dummy crept forward off the seat at ~1 cm/s
+    // and the chair jittered at 2–6 cm/s (docs/constraints.md).
+    double fastest = 0.0;
+    std::string who;
+    for (int i = 0; i < 500; ++i) {
+        w.step();
+        for (sm::Entity e : sm::world_bodies(w))
+            if (const double v = sm::length(sm::body_linear_velocity(w, e)); v > fastest)
+                fastest = v, who = sm::body_name(w, e);
+    }
+    EXPECT_LT(fastest, 0.01) << who;
     for (sm::Entity e : sm::world_bodies(w))
         ASSERT_TRUE(sm::is_finite(sm::body_position(w, e))) << sm::body_name(w, e);
     const sm::Vec3 seat = sm::body_position(w, sm::find_body(w, "chair_seat"));
@@ -55,17 +69,8 @@ TEST(ChairSample, DummyEndsUpSittingOnTheSeat)
     EXPECT_LT(std::abs(pelvis.z - seat.z), 0.1);
     EXPECT_NEAR(seat.y, 0.445, 2e-3);
     EXPECT_LT(sm::length(sm::Vec3{seat.x, 0.0, seat.z}), 0.02);
-    // Nearly at rest. The issue asks < 1 cm/s; measured over 2–8 s, the chair and the dummy's body
-    // keep a jitter of 0.2–3 cm/s and the hands 2–40 cm/s that does not decay (docs/constraints.md,
-    // known problems). Asserted here: the body's jitter stays under 5 cm/s, the measured ceiling with
-    // margin, so a blow-up or a slide fails.
-    for (const char* name :
-         {"chair_seat", "chair_back", "dummy_pelvis", "dummy_torso", "dummy_thigh_l", "dummy_thigh_r"})
-        EXPECT_LT(speed(w, name), 0.05) << name;
-    for (const char* name :
-         {"chair_leg_fl_joint", "chair_leg_fr_joint", "chair_leg_bl_joint", "chair_leg_br_joint",
-          "chair_back_joint", "dummy_waist", "dummy_hip_l", "dummy_hip_r"})
-        EXPECT_LT(sm::constraint_error(w, sm::find_constraint(w, name)).linear, 1e-3) << name;
+    for (sm::Constraint c : sm::world_constraints(w))
+        EXPECT_LT(sm::constraint_error(w, c).linear, 1e-3) << sm::constraint_def(w, c).name;
     EXPECT_EQ(sm::world_broken_constraints(w), 0u);
 }
 

@@ -3,10 +3,11 @@
 //
 // Each constraint is a spring–damper set by a natural frequency and a damping ratio and scaled by the
 // pair's effective mass at the anchors (k = m_eff·(2πf)², c = 2ζ·m_eff·2πf), so one setting is stable
-// for any mass ratio at the world's dt. The frequency is capped at 1/(10·h) with h the substep, like
-// contact; every clamp is counted. Anchors are given in a part's shape frame, either as a point or as
-// a place on its surface (a direction from the centre, or Barr's angles η, ω) that moves with the
-// surface when the part is resized or reshaped.
+// for any mass ratio at the world's dt. The spring is integrated implicitly, so any frequency is stable
+// at any step (docs/constraints.md). On a modal body it acts through the modes at the anchor.
+// Anchors are given in a part's shape frame, either as a point or as a place on its surface (a
+// direction from the centre, or Barr's angles η, ω) that moves with the surface when the part is
+// resized or reshaped.
 #pragma once
 
 #include "supermodal/entity.h"
@@ -63,14 +64,15 @@ struct ConstraintDef {
     Entity b{}; ///< Second body; null = the world (anchor_b is then a world point).
     AnchorDef anchor_a{};
     AnchorDef anchor_b{};
-    double frequency_hz = 30.0;   ///< Spring natural frequency [Hz], > 0; capped at 1/(10·h).
+    double frequency_hz = 30.0;   ///< Spring natural frequency [Hz], > 0 (implicit: no cap).
     double damping_ratio = 0.7;   ///< [-], ≥ 0.
     double rest_length = -1.0;    ///< Distance only [m]; < 0 = the anchors' distance at creation.
     double swing_limit = -1.0;    ///< Point only: max swing from the rest pose [rad]; < 0 = none.
     double twist_limit = -1.0;    ///< Point only: max twist about the axis [rad]; < 0 = none.
     Vec3 axis_a{};                ///< Limit axis in a's shape frame; zero = origin → anchor_a.
-    double angular_damping = 0.0; ///< Joint friction [1/s], >= 0: the parts' relative spin decays at this
-                                  ///< rate (integrated implicitly, so any value is stable).
+    double angular_damping = 0.0; ///< Joint friction [1/s], >= 0: a limb swinging on the joint slows at
+                                  ///< this rate (torque from the parts' inertia about the joint,
+                                  ///< implicit, so any value is stable).
     double break_force = std::numeric_limits<double>::infinity(); ///< [N], > 0; the spring breaks above it.
     bool collide_connected = false; ///< False: a and b do not collide with each other.
 };

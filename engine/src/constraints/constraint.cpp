@@ -2,6 +2,7 @@
 // Constraint handles and queries (the public side of constraint.h).
 #include "constraints/constraint_world.h"
 #include "core/assert.h"
+#include "supermodal/modal.h"
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
@@ -165,11 +166,11 @@ std::pair<Vec3, Vec3> constraint_anchors(const World& world, Constraint constrai
     const ConstraintModel* c = model_of(world, constraint);
     if (c == nullptr)
         return {};
-    const Registry& reg = world.impl().reg;
-    const Vec3 a = world_point(reg.get<BodyModel>(c->def.a), reg.get<Pose>(c->def.a), c->local_a);
+    // The material points, modal displacement included (what the springs hold together).
+    const Vec3 a = body_deformed_point(world, c->def.a, c->local_a);
     if (c->def.b.is_null())
         return {a, c->local_b};
-    return {a, world_point(reg.get<BodyModel>(c->def.b), reg.get<Pose>(c->def.b), c->local_b)};
+    return {a, body_deformed_point(world, c->def.b, c->local_b)};
 }
 
 double world_max_constraint_error(const World& world)

@@ -292,11 +292,18 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         const Vec3 dl_body = inv_rotate(q, ctx.h * io.torque[e.index]);
         v.angular += rotate(q, hadamard(m.inv_inertia_body, dl_body));
     });
+}
 
-    // The anchors follow the displacement the bodies actually make this substep, x' − x = h·v': with
-    // the velocity from before the contact forces (which still holds this substep's gravity), a
-    // sticking spring would grow by h²·g every substep and shove the body uphill (measured: a block
-    // crept 7 mm/s up a 22° incline). Each contact writes only its own anchor.
+void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadPool* pool, ContactWorld& io)
+{
+    // The anchors follow the displacement the bodies actually make this substep, x' − x = h·v', with
+    // v' the velocity after every force of the substep: with the velocity from before the contact forces
+    // (which still holds this substep's gravity), a sticking spring would grow by h²·g every substep and
+    // shove the body uphill (measured: a block crept 7 mm/s up a 22° incline); with the velocity from
+    // before the constraint impulses, a part held by a joint while it rests on something ratchets its
+    // spring the same way (measured: the chair sample's dummy crept forward off the seat at 1 cm/s, its
+    // thighs and the chair jittering at 2–6 cm/s). Each contact writes only its own anchor.
+    const Registry& creg = reg;
     for_parts(pool, io.contacts.size(), [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const ContactInfo& ci = io.contacts[i];

@@ -66,9 +66,13 @@ struct ContactWorld {
 [[nodiscard]] int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
 /// Narrowphase for this substep's poses; pool may be null (one thread).
 void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, ContactWorld& io_contact);
-/// Penalty normal and friction forces into velocities; updates the friction anchors and the step's
-/// event accumulators. pool may be null (one thread).
+/// Penalty normal and friction forces into velocities; updates the step's event accumulators. pool may be
+/// null (one thread).
 void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, ThreadPool* pool,
                           ContactWorld& io_contact, StepWarnings& io_warnings);
+/// Moves the friction anchors of this substep's contacts by the relative motion the bodies will make,
+/// h·v'. Call after every velocity change of the substep (contact forces and constraint impulses).
+void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadPool* pool,
+                            ContactWorld& io_contact);
 
 } // namespace supermodal

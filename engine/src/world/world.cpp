@@ -128,6 +128,7 @@ void World::Impl::step()
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
             freeze_non_finite(ctx, Stage::PenaltyForces, reg, warnings);
+            update_contact_anchors(ctx, reg, pool.get(), contact);
         });
         run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
         run(Stage::IntegratePositions, [&] {

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// One end of a constraint for one substep: the body's mass at the anchor, rigid and modal, and how an
+// impulse there changes its velocities.
+#pragma once
+
+#include "modal/constraint_coupling.h"
+#include "world/components.h"
+
+namespace supermodal
+{
+
+struct Side {
+    const BodyModel* m = nullptr;
+    const Pose* p = nullptr;
+    Velocity* v = nullptr; ///< Null for the world.
+    Vec3 point{};          ///< Anchor [m], world, with the modal displacement.
+    Vec3 r{};              ///< Anchor − centre of mass [m], world.
+    Mat3 inv_inertia{};    ///< World frame [1/(kg·m²)]; zero unless dynamic.
+    double inv_mass = 0.0;
+    ModalAnchor modal; ///< The modes at the anchor (modal bodies only).
+};
+
+/// The side of body e (null: the world, `local` a world point) at shape-frame anchor `local`.
+/// `with_rotation`: the modes' rotation at the anchor is needed too (welds).
+[[nodiscard]] Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation);
+/// Orientation of the material at the anchor: the body's, turned by the modal rotation there.
+[[nodiscard]] Quat anchor_orientation(const Side& s);
+/// Velocity of the anchor point [m/s], modes included.
+[[nodiscard]] Vec3 anchor_velocity(const Side& s);
+/// The body's spin [rad/s] (rigid only: joint limits and friction act on the parts).
+[[nodiscard]] Vec3 angular_velocity(const Side& s);
+/// Spin of the material at the anchor [rad/s], modes included (welds).
+[[nodiscard]] Vec3 anchor_spin(const Side& s);
+/// Adds an impulse J at the anchor and an angular impulse L [N·m·s] to the body and its modes.
+void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse);
+/// An angular impulse on the rigid body only (joint limits, joint friction).
+void push_rigid_spin(Side& s, const Vec3& angular_impulse);
+/// K = anchor velocity change of a relative to b per unit impulse [1/kg] (rigid and modal).
+[[nodiscard]] Mat3 point_mass_inverse(const Side& a, const Side& b);
+/// Spin change of b relative to a per unit angular impulse [1/(kg·m²)] (rigid and modal).
+[[nodiscard]] Mat3 anchor_inertia_inverse(const Side& a, const Side& b);
+/// Inverse of a symmetric 3×3 by cofactors; false when (nearly) singular.
+bool invert(const Mat3& a, Mat3& out);
+
+} // namespace supermodal
