@@ -156,7 +156,8 @@ void run_action(const Json& action, const std::string& where, const std::filesys
     } else if (verb == "step") {
         const int n = count(action, where, "count", 1);
         session.step(n);
-        log << " " << n << ": t = " << session.world().time() << " s";
+        log << " " << n << ": t = " << session.world().time() << " s, " << session.ms_per_step()
+            << " ms/step";
     } else if (verb == "frames") {
         const int n = count(action, where, "count", 1);
         const double seconds = number(action, where, "seconds", 1.0 / 60.0);

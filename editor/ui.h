@@ -7,6 +7,7 @@
 
 #include "session.h"
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -50,6 +51,14 @@ class EditorUi
     [[nodiscard]] const std::vector<WidgetRect>& widgets() const { return m_widgets; }
     /// The last error of an action started from the UI (a refused value, a failed save), or empty.
     [[nodiscard]] const std::string& last_error() const { return m_last_error; }
+    /// A windowed host plugs its platform and renderer backends in here: `before_frame` runs just before
+    /// ImGui::NewFrame (ImGui_ImplGlfw_NewFrame, ImGui_ImplOpenGL3_NewFrame), `after_render` just after
+    /// ImGui::Render (draw the world, then ImGui_ImplOpenGL3_RenderDrawData). Both are empty headless.
+    std::function<void()> before_frame;
+    std::function<void()> after_render;
+    /// True: frame() feeds the mouse set by set_mouse()/press(). A platform backend that feeds ImGui's
+    /// mouse itself sets this to false (press() still works: it turns it on for its three frames).
+    bool synthetic_mouse = true;
     /// Where the Save button writes.
     std::string save_path = "scene_saved.json";
     /// Steps the Step button runs.

@@ -58,9 +58,13 @@ void EditorUi::frame(double real_seconds)
 {
     ImGui::SetCurrentContext(m_context);
     ImGuiIO& io = ImGui::GetIO();
+    if (before_frame)
+        before_frame();
     io.DeltaTime = static_cast<float>(std::max(real_seconds, k_min_ui_delta));
-    io.MousePos = ImVec2(m_mouse_x, m_mouse_y);
-    io.MouseDown[0] = m_mouse_down;
+    if (synthetic_mouse) {
+        io.MousePos = ImVec2(m_mouse_x, m_mouse_y);
+        io.MouseDown[0] = m_mouse_down;
+    }
     m_widgets.clear();
     ImGui::NewFrame();
     draw_scene_tree(*this);
@@ -68,6 +72,8 @@ void EditorUi::frame(double real_seconds)
     draw_controls(*this);
     draw_speed_accuracy(*this);
     ImGui::Render();
+    if (after_render)
+        after_render();
     m_session.frame(real_seconds);
 }
 
@@ -102,6 +108,8 @@ Status EditorUi::press(const std::string& label)
     }
     const float x = 0.5f * (found[0]->min_x + found[0]->max_x),
                 y = 0.5f * (found[0]->min_y + found[0]->max_y);
+    const bool was_synthetic = synthetic_mouse;
+    synthetic_mouse = true;
     // Hover, press, release: ImGui buttons fire on the release over the item they were pressed on.
     // Zero seconds per frame, so a running simulation does not move while the mouse works.
     set_mouse(x, y, false);
@@ -111,6 +119,7 @@ Status EditorUi::press(const std::string& label)
     set_mouse(x, y, false);
     frame(0.0);
     set_mouse(-FLT_MAX, -FLT_MAX, false);
+    synthetic_mouse = was_synthetic;
     return {};
 }
 

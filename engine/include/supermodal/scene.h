@@ -69,7 +69,8 @@ struct Scene {
 /// Scene JSON, format v1, that parse_scene() reads back to an identical Scene: includes flattened
 /// (materials, bodies and constraints inline, names prefixed), parents kept, every number in its
 /// shortest text that reads back to the same double. Young's modulus, Poisson's ratio and (unless the
-/// body's own differs) the damping ratio of a modal body are its material's, as in the file format.
+/// body's own differs) the damping ratio of a modal body are its material's, as in the file format;
+/// BodyDef::friction and restitution are not written (build_world takes them from the material).
 [[nodiscard]] std::string scene_to_json(const Scene& scene);
 /// Writes scene_to_json(scene) to `path` atomically: a temporary file in the same folder, flushed,
 /// then renamed over `path`, so a reader never sees half a file and a failure leaves `path` as it was.
