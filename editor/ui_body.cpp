@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 #include <string>
+#include <vector>
 
 namespace supermodal::editor
 {
@@ -51,13 +52,14 @@ void draw_shape(EditorUi& ui, const std::string& base, const ShapeDef& shape)
     doubles(ui, "Bend angle [rad]##body", base + "/shape/bend/angle", &angle, 1);
 }
 
-void draw_material(EditorUi& ui, const std::string& base, const Scene& scene, const SceneBody& body)
+void draw_material(EditorUi& ui, const std::string& base, const std::vector<std::string>& materials,
+                   const SceneBody& body)
 {
     const char* current = body.material.empty() ? "(default)" : body.material.c_str();
     if (ImGui::BeginCombo("Material##body", current)) {
-        for (const MaterialDef& m : scene.materials) {
-            if (ImGui::Selectable(m.name.c_str(), m.name == body.material))
-                ui.apply(base + "/material", m.name);
+        for (const std::string& name : materials) {
+            if (ImGui::Selectable(name.c_str(), name == body.material))
+                ui.apply(base + "/material", name);
         }
         ImGui::EndCombo();
     }
@@ -101,14 +103,19 @@ void draw_body_window(EditorUi& ui)
         if (scene == nullptr || index == scene->bodies.size()) {
             ImGui::TextDisabled("select a body in the scene tree");
         } else {
-            const SceneBody& body = scene->bodies[index];
+            // Copies: an applied edit replaces the session's scene (and may rebuild its world) while the
+            // rest of this window is still being drawn from these values.
+            const SceneBody body = scene->bodies[index];
+            std::vector<std::string> materials;
+            for (const MaterialDef& m : scene->materials)
+                materials.push_back(m.name);
             const std::string base = "/bodies/" + std::to_string(index);
             ImGui::Text("%s", body.def.name.c_str());
             const Entity e = find_body(session.world(), body.def.name);
             if (!e.is_null() && body.def.motion == MotionType::Dynamic)
                 ImGui::Text("mass %.4g kg, density %.4g kg/m^3",
                             body_mass_properties(session.world(), e).mass, body.def.density);
-            draw_material(ui, base, *scene, body);
+            draw_material(ui, base, materials, body);
             ImGui::Separator();
             ImGui::TextUnformatted("Shape");
             draw_shape(ui, base, body.def.shape);

@@ -70,7 +70,8 @@ void draw_speed_accuracy(EditorUi& ui)
             ImGui::End();
             return;
         }
-        const WorldDef& w = s.scene().world;
+        // A copy: an applied edit replaces the session's scene and world while this window is drawn.
+        const WorldDef w = s.scene().world;
         double dt = w.dt;
         if (ImGui::InputDouble("dt [s]##speed", &dt, 0.0, 0.0, "%.6g", k_on_enter))
             ui.apply("/settings/dt", dt);
@@ -105,15 +106,16 @@ void draw_speed_accuracy(EditorUi& ui)
         const Entity e = find_body(s.world(), ui.selected_body());
         const ModalBasis* basis = e.is_null() ? nullptr : body_modal_basis(s.world(), e);
         if (basis != nullptr) {
-            int modes = basis->mode_count;
-            if (ImGui::InputInt("Modes##speed", &modes, 1, 4, k_on_enter))
-                ui.apply("/bodies/" + ui.selected_body() + "/dynamics/modes", modes);
-            ui.track("Modes##speed");
             const auto& r = basis->diagnostics.mode_residuals;
             const double worst = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
             ImGui::Text("modal residual %.2e, f1 = %.4g Hz", worst,
                         basis->frequencies_hz.empty() ? 0.0 : basis->frequencies_hz.front());
             ImGui::Text("modal energy %.4g J", body_modal_energy(s.world(), e));
+            // Last: changing the mode count rebuilds the world, and with it `basis` and `e`.
+            int modes = basis->mode_count;
+            if (ImGui::InputInt("Modes##speed", &modes, 1, 4, k_on_enter))
+                ui.apply("/bodies/" + ui.selected_body() + "/dynamics/modes", modes);
+            ui.track("Modes##speed");
         } else {
             ImGui::TextDisabled("select a modal body for its modes");
         }
