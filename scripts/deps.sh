@@ -12,6 +12,8 @@ packages=(
   libccd-dev           # contact: MPR penetration depth of convex pairs
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
+  libimgui-dev         # editor/: Dear ImGui (core library and backend sources)
+  libglfw3-dev         # editor/: the window of the interactive editor
 )
 
 missing=()

@@ -9,6 +9,6 @@ build=${SUPERMODAL_BUILD_DIR:-build}
 jobs=${SUPERMODAL_JOBS:-$(nproc)}
 # RelWithDebInfo: optimised, with engine assertions on (STYLE.md 2.6).
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERMODAL_WERROR=ON \
-  -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=ON >/dev/null
+  -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=ON -DSUPERMODAL_EDITOR=ON >/dev/null
 cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 600

@@ -64,4 +64,22 @@ struct Scene {
 /// Makes a world holding the scene's bodies and then its constraints, created in file order.
 [[nodiscard]] Result<World> build_world(const Scene& scene);
 
+// ---- Writing scenes (engine/src/scene/writer.cpp) --------------------------------------------------
+
+/// Scene JSON, format v1, that parse_scene() reads back to an identical Scene: includes flattened
+/// (materials, bodies and constraints inline, names prefixed), parents kept, every number in its
+/// shortest text that reads back to the same double. Young's modulus, Poisson's ratio and (unless the
+/// body's own differs) the damping ratio of a modal body are its material's, as in the file format;
+/// BodyDef::friction and restitution are not written (build_world takes them from the material).
+[[nodiscard]] std::string scene_to_json(const Scene& scene);
+/// Writes scene_to_json(scene) to `path` atomically: a temporary file in the same folder, flushed,
+/// then renamed over `path`, so a reader never sees half a file and a failure leaves `path` as it was.
+[[nodiscard]] Status save_scene(const Scene& scene, const std::string& path);
+/// Copies what a running world holds back into its scene so that saving keeps what the user sees:
+/// every scene body's pose and velocities (in its parent's frame for parts, as the format wants) and,
+/// when `include_shapes`, its current shape (after set_body_shape()). Bodies are matched by name.
+/// Modal amplitudes and contact caches are not part of format v1 and are not kept. Fails, changing
+/// nothing, when a scene body has no body of that name in the world.
+[[nodiscard]] Status refresh_scene_from_world(Scene& scene, const World& world, bool include_shapes = true);
+
 } // namespace supermodal

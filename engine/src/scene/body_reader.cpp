@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -56,10 +57,19 @@ struct MaterialIndex {
     std::vector<std::string_view> names;
 };
 
+/// |Σc² − 1| up to which a vector counts as unit already [-]: a few roundings of a normalised vector.
+constexpr double k_unit_tolerance = 8.0 * std::numeric_limits<double>::epsilon();
+
 /// Scales by the largest component before normalising, so [1e-200, 0, 0] still gives a unit vector;
-/// false when every component is zero.
+/// false when every component is zero. A vector that is unit to rounding is kept bit for bit, so a
+/// scene written by save_scene() reads back identical (normalising again would move the last bits).
 template <size_t N> bool normalize_components(double (&c)[N])
 {
+    double sum_squares = 0.0;
+    for (double v : c)
+        sum_squares += v * v;
+    if (std::abs(sum_squares - 1.0) <= k_unit_tolerance)
+        return true;
     double largest = 0.0;
     for (double v : c)
         largest = std::max(largest, std::abs(v));

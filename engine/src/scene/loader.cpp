@@ -35,7 +35,7 @@ constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
     "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
     "contact", "threads"};
-const std::vector<std::string_view> k_contact_keys = {"path"};
+const std::vector<std::string_view> k_contact_keys = {"path", "sample_spacing", "max_samples_per_body"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
@@ -72,6 +72,12 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
                 r.read_choice(*path, contact_where + "/path", k_contact_paths, index);
                 world.contact.path = static_cast<ContactPath>(index);
             }
+        if (r.ok() && contact->is_object()) {
+            r.field_number(*contact, contact_where, "sample_spacing", scene_io::at_least(0.0),
+                           world.contact.sample_spacing);
+            r.field_int(*contact, contact_where, "max_samples_per_body", scene_io::closed(1.0, 1e6),
+                        world.contact.max_samples_per_body);
+        }
     }
     r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
     if (!r.ok())

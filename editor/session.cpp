@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+#include "session.h"
+
+#include "supermodal/body.h"
+
+#include <chrono>
+#include <numeric>
+#include <utility>
+
+namespace supermodal::editor
+{
+
+Status EditorSession::load(const std::string& path)
+{
+    Result<Scene> scene = supermodal::load_scene(path);
+    if (!scene)
+        return scene.error();
+    return load_scene(std::move(*scene));
+}
+
+Status EditorSession::load_scene(Scene scene)
+{
+    Result<World> world = build_world(scene);
+    if (!world)
+        return world.error();
+    m_scene = std::move(scene);
+    m_world.emplace(std::move(*world));
+    m_drag.reset();
+    m_push.reset();
+    m_step_ms.clear();
+    m_steps_run = 0;
+    m_frame_backlog = 0.0;
+    m_last_effect = SetEffect::Rebuilt;
+    return {};
+}
+
+Status EditorSession::reset()
+{
+    const bool was_playing = m_playing;
+    Status status = load_scene(m_scene);
+    m_playing = was_playing;
+    return status;
+}
+
+void EditorSession::apply_loads()
+{
+    World& w = *m_world;
+    if (m_drag && world_valid(w, m_drag->body) && body_motion(w, m_drag->body) == MotionType::Dynamic) {
+        // A spring–damper tuned like the engine's constraints: k = m(2πf)², c = 2ζm(2πf), so the pull
+        // feels the same for a pebble and a chair.
+        const DragSpring& d = *m_drag;
+        const double mass = body_mass_properties(w, d.body).mass;
+        const double omega = 2.0 * M_PI * d.frequency_hz;
+        const Quat q = body_orientation(w, d.body);
+        const Vec3 grabbed = body_position(w, d.body) + rotate(q, d.point_shape);
+        const Vec3 arm = grabbed - body_center_of_mass(w, d.body);
+        const Vec3 velocity = body_linear_velocity(w, d.body) + cross(body_angular_velocity(w, d.body), arm);
+        const Vec3 force =
+            mass * omega * omega * (d.target - grabbed) - 2.0 * d.damping_ratio * mass * omega * velocity;
+        apply_force(w, d.body, force, grabbed);
+    }
+    if (m_push && m_push->steps_left > 0 && world_valid(w, m_push->body)) {
+        const Vec3 point =
+            body_position(w, m_push->body) + rotate(body_orientation(w, m_push->body), m_push->point_shape);
+        apply_force(w, m_push->body, m_push->force, point);
+        if (--m_push->steps_left == 0)
+            m_push.reset();
+    }
+}
+
+void EditorSession::step(int count)
+{
+    if (!m_world)
+        return;
+    for (int i = 0; i < count; ++i) {
+        apply_loads();
+        const auto start = std::chrono::steady_clock::now();
+        m_world->step();
+        const std::chrono::duration<double, std::milli> spent = std::chrono::steady_clock::now() - start;
+        m_step_ms.push_back(spent.count());
+        if (m_step_ms.size() > k_timing_window)
+            m_step_ms.pop_front();
+        ++m_steps_run;
+    }
+}
+
+int EditorSession::frame(double real_seconds)
+{
+    if (!m_world || !m_playing || !(real_seconds > 0.0))
+        return 0;
+    // Whole steps of dt, like World::advance, but one at a time so the loads and timing apply to each.
+    const double dt = m_world->settings().dt;
+    m_frame_backlog += real_seconds;
+    int steps = 0;
+    while (m_frame_backlog >= dt && steps < m_world->settings().max_steps_per_advance) {
+        m_frame_backlog -= dt;
+        ++steps;
+    }
+    if (steps == m_world->settings().max_steps_per_advance)
+        m_frame_backlog = 0.0; // a slow frame drops its backlog instead of spiralling
+    step(steps);
+    return steps;
+}
+
+double EditorSession::ms_per_step() const
+{
+    if (m_step_ms.empty())
+        return 0.0;
+    return std::accumulate(m_step_ms.begin(), m_step_ms.end(), 0.0) / static_cast<double>(m_step_ms.size());
+}
+
+Status EditorSession::save(const std::string& path, bool current_state) const
+{
+    Scene out = m_scene;
+    if (current_state && m_world)
+        if (Status status = refresh_scene_from_world(out, *m_world); !status)
+            return status;
+    return save_scene(out, path);
+}
+
+Status EditorSession::rebuild_keeping_state(const Scene& edited)
+{
+    Scene running = edited;
+    // Bodies keep where they are and how they move; a renamed body starts from its scene pose.
+    if (m_world)
+        (void)refresh_scene_from_world(running, *m_world, /*include_shapes=*/false);
+    Result<World> world = build_world(running);
+    if (!world)
+        return world.error();
+    m_world.emplace(std::move(*world));
+    m_drag.reset();
+    m_push.reset();
+    return {};
+}
+
+} // namespace supermodal::editor

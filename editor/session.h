@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+// The editor's model: a scene (what the user edits and saves) and the world running it. Everything the
+// UI and the script runner do goes through here, so both behave the same and tests need no pixels.
+#pragma once
+
+#include "supermodal/entity.h"
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+#include "supermodal/scene.h"
+#include "supermodal/world.h"
+
+#include <deque>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace supermodal::editor
+{
+
+using Json = nlohmann::ordered_json;
+
+/// A ray in the world frame: origin [m] and direction (any length > 0).
+struct Ray {
+    Vec3 origin{};
+    Vec3 direction{0, 0, -1};
+};
+
+/// Where a ray first enters a body.
+struct PickHit {
+    Entity body{};
+    std::string name;
+    double distance = 0.0; ///< Along the unit ray direction [m].
+    Vec3 point{};          ///< Hit point [m], world.
+    Vec3 point_shape{};    ///< The same point in the body's shape frame [m] (rest shape).
+};
+
+/// How the last set() reached the world.
+enum class SetEffect : uint8_t {
+    Live,    ///< Applied to the running world (set_body_shape on rigid bodies): the run goes on.
+    Rebuilt, ///< The world was rebuilt from the edited scene at the current poses and velocities.
+};
+
+/// A spring pulling a body-fixed point towards a target while the user drags it.
+struct DragSpring {
+    Entity body{};
+    Vec3 point_shape{};         ///< Grabbed point, shape frame [m].
+    Vec3 target{};              ///< Where the mouse is [m], world.
+    double frequency_hz = 4.0;  ///< Natural frequency against the body's mass [Hz]: soft enough to
+                                ///< feel like a spring, far below the 1/(10·dt) stability cap.
+    double damping_ratio = 0.7; ///< [-]; 0.7 settles without ringing.
+};
+
+class EditorSession
+{
+  public:
+    /// Reads a scene file and builds its world. On failure the session keeps what it had.
+    Status load(const std::string& path);
+    /// Takes a parsed scene and builds its world.
+    Status load_scene(Scene scene);
+    /// Rebuilds the world from the scene: back to its initial poses, with every edit kept.
+    Status reset();
+
+    void play() { m_playing = true; }
+    void pause() { m_playing = false; }
+    [[nodiscard]] bool playing() const { return m_playing; }
+    /// Runs `count` fixed steps now, playing or not, with the drag spring and push loads applied.
+    void step(int count);
+    /// One frame of `real_seconds` [s]: while playing, advances the world by whole steps of dt.
+    /// Returns the steps run.
+    int frame(double real_seconds);
+
+    /// Sets one scene value by its JSON pointer in the written scene (scene_to_json), with body and
+    /// constraint names allowed in place of indices: "/bodies/seat/shape/radii/0", "/settings/dt",
+    /// "/materials/wood/density", "/bodies/board/dynamics/modes". The edited scene is read back by the
+    /// scene loader, so a bad value is refused with the loader's own message and pointer, and nothing
+    /// changes. A shape change of rigid bodies is applied to the running world; anything else rebuilds
+    /// the world at the current poses and velocities.
+    Status set(std::string_view path, const Json& value);
+    /// The current value at a path (same syntax as set), from the scene as it would be written.
+    [[nodiscard]] Result<Json> get(std::string_view path) const;
+    [[nodiscard]] SetEffect last_set_effect() const { return m_last_effect; }
+
+    /// The first body the ray enters (rest shapes; planes included), or nothing.
+    [[nodiscard]] std::optional<PickHit> pick(const Ray& ray) const;
+    /// Grabs the picked point of a dynamic body with a spring; fails when the ray misses or the body
+    /// cannot move.
+    Status drag_begin(const Ray& ray);
+    /// Moves the spring's target [m], world.
+    void drag_to(const Vec3& target);
+    void drag_end() { m_drag.reset(); }
+    [[nodiscard]] const std::optional<DragSpring>& drag() const { return m_drag; }
+    /// Presses on the surface where the ray enters a dynamic body, with `force` [N] along the ray, held
+    /// for the next `steps` steps. On a modal body the load also drives its modes (apply_force).
+    Status push(const Ray& ray, double force, int steps);
+
+    /// Saves what the world shows now (poses, velocities, edited shapes) when `current_state`, else the
+    /// scene as loaded and edited (its initial poses). Atomic (save_scene).
+    Status save(const std::string& path, bool current_state = true) const;
+
+    [[nodiscard]] const Scene& scene() const { return m_scene; }
+    [[nodiscard]] bool has_world() const { return m_world.has_value(); }
+    [[nodiscard]] World& world() { return *m_world; }
+    [[nodiscard]] const World& world() const { return *m_world; }
+    /// Mean wall time of one step over the last k_timing_window steps [ms]; 0 before any step.
+    [[nodiscard]] double ms_per_step() const;
+    /// Steps run since the last load or reset [-].
+    [[nodiscard]] uint64_t steps_run() const { return m_steps_run; }
+
+    /// Steps averaged by ms_per_step().
+    static constexpr size_t k_timing_window = 60;
+
+  private:
+    Status rebuild_keeping_state(const Scene& edited);
+    void apply_loads();
+
+    struct PushLoad {
+        Entity body{};
+        Vec3 point_shape{};
+        Vec3 force{}; ///< [N], world.
+        int steps_left = 0;
+    };
+
+    Scene m_scene;
+    std::optional<World> m_world;
+    bool m_playing = false;
+    SetEffect m_last_effect = SetEffect::Rebuilt;
+    std::optional<DragSpring> m_drag;
+    std::optional<PushLoad> m_push;
+    std::deque<double> m_step_ms;
+    double m_frame_backlog = 0.0; ///< Real time not yet stepped [s].
+    uint64_t m_steps_run = 0;
+};
+
+/// The pointer with body and constraint names replaced by their indices in `scene`
+/// ("/bodies/seat/shape" → "/bodies/0/shape"); an unknown name is an error naming the path.
+[[nodiscard]] Result<std::string> resolve_scene_path(const Scene& scene, std::string_view path);
+
+} // namespace supermodal::editor

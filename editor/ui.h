@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+// The editor's Dear ImGui interface: scene tree, body parameters, run controls, and the speed↔accuracy
+// panel. It draws into its own ImGui context and needs no graphics backend: a host with a window hands
+// the draw data (ImGui::GetDrawData()) to a renderer; headless runs and tests drive it with synthetic
+// mouse input, pressing widgets by their label.
+#pragma once
+
+#include "session.h"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+struct ImGuiContext;
+
+namespace supermodal::editor
+{
+
+/// Where a clickable widget was drawn in the last frame, by its label.
+struct WidgetRect {
+    std::string label; ///< As passed to ImGui ("Pause", "chair_seat", "Modal##dynamics").
+    float min_x = 0, min_y = 0, max_x = 0, max_y = 0; ///< Screen rectangle [pixels].
+    bool visible = false;                             ///< Not clipped away (scrolled out, collapsed).
+};
+
+class EditorUi
+{
+  public:
+    /// Makes an ImGui context for a display of width × height pixels and builds its font atlas (the
+    /// pixels stay on the CPU until a renderer uploads them).
+    EditorUi(EditorSession& session, int width = 1280, int height = 720);
+    ~EditorUi();
+    EditorUi(const EditorUi&) = delete;
+    EditorUi& operator=(const EditorUi&) = delete;
+
+    /// One UI frame of `real_seconds` [s]: new ImGui frame with the current mouse state, every window
+    /// drawn (button presses act on the session at once), ImGui::Render(), then session.frame().
+    void frame(double real_seconds = 1.0 / 60.0);
+    /// Clicks the widget drawn with this label (exact label first, else the text before "##"): moves the
+    /// mouse there, presses and releases over three frames. Fails when no visible widget, or more
+    /// than one, has that label; the message lists the labels there are.
+    Status press(const std::string& label);
+
+    /// Sets the mouse for the next frame (a windowed host forwards its events here) [pixels].
+    void set_mouse(float x, float y, bool left_down);
+
+    [[nodiscard]] const std::string& selected_body() const { return m_selected; }
+    void select_body(const std::string& name) { m_selected = name; }
+    /// The widgets of the last frame.
+    [[nodiscard]] const std::vector<WidgetRect>& widgets() const { return m_widgets; }
+    /// The last error of an action started from the UI (a refused value, a failed save), or empty.
+    [[nodiscard]] const std::string& last_error() const { return m_last_error; }
+    /// A windowed host plugs its platform and renderer backends in here: `before_frame` runs just before
+    /// ImGui::NewFrame (ImGui_ImplGlfw_NewFrame, ImGui_ImplOpenGL3_NewFrame), `after_render` just after
+    /// ImGui::Render (draw the world, then ImGui_ImplOpenGL3_RenderDrawData). Both are empty headless.
+    std::function<void()> before_frame;
+    std::function<void()> after_render;
+    /// True: frame() feeds the mouse set by set_mouse()/press(). A platform backend that feeds ImGui's
+    /// mouse itself sets this to false (press() still works: it turns it on for its three frames).
+    bool synthetic_mouse = true;
+    /// Where the Save button writes.
+    std::string save_path = "scene_saved.json";
+    /// Steps the Step button runs.
+    int step_count = 1;
+
+    [[nodiscard]] ImGuiContext* context() { return m_context; }
+    [[nodiscard]] EditorSession& session() { return m_session; }
+
+    // ---- Used by the window functions (ui_*.cpp) -----------------------------------------------------
+    /// Records the last ImGui item under `label` so press() can find it.
+    void track(const char* label);
+    /// Sets a scene value from a widget, keeping the message of a refusal for the status line.
+    void apply(const std::string& path, const Json& value);
+    void report(const Status& status);
+
+  private:
+    EditorSession& m_session;
+    ImGuiContext* m_context = nullptr;
+    std::string m_selected;
+    std::vector<WidgetRect> m_widgets;
+    std::string m_last_error;
+    float m_mouse_x = -1.0f, m_mouse_y = -1.0f;
+    bool m_mouse_down = false;
+};
+
+// The windows, one file each (ui_scene_tree.cpp, ui_body.cpp, ui_controls.cpp).
+void draw_scene_tree(EditorUi& ui);
+void draw_body_window(EditorUi& ui);
+void draw_controls(EditorUi& ui);
+void draw_speed_accuracy(EditorUi& ui);
+
+} // namespace supermodal::editor

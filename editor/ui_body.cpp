@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+// The parameter window of the selected body: shape (radii, exponents, taper, bend), material,
+// rigid or modal, modes and lattice. Values apply when the user presses Enter in a field; every change
+// goes through EditorSession::set, so the scene loader checks it.
+#include "supermodal/body.h"
+#include "ui.h"
+
+#include <imgui.h>
+#include <string>
+#include <vector>
+
+namespace supermodal::editor
+{
+namespace
+{
+
+constexpr ImGuiInputTextFlags k_on_enter = ImGuiInputTextFlags_EnterReturnsTrue;
+
+/// An editable row of n doubles; applies the whole array at `path` when the user commits it.
+void doubles(EditorUi& ui, const char* label, const std::string& path, double* values, int n)
+{
+    if (ImGui::InputScalarN(label, ImGuiDataType_Double, values, n, nullptr, nullptr, "%.6g", k_on_enter)) {
+        Json array = Json::array();
+        for (int i = 0; i < n; ++i)
+            array.push_back(values[i]);
+        ui.apply(path, n == 1 ? Json(values[0]) : array);
+    }
+    ui.track(label);
+}
+
+void draw_shape(EditorUi& ui, const std::string& base, const ShapeDef& shape)
+{
+    if (shape.type == ShapeType::Plane) {
+        double n[3] = {shape.plane_normal.x, shape.plane_normal.y, shape.plane_normal.z};
+        doubles(ui, "Normal##body", base + "/shape/normal", n, 3);
+        double offset = shape.plane_offset;
+        doubles(ui, "Offset [m]##body", base + "/shape/offset", &offset, 1);
+        return;
+    }
+    if (shape.type == ShapeType::Hyperquadric) {
+        ImGui::Text("hyperquadric, %zu terms (edit them in the scene file)", shape.terms.size());
+        return;
+    }
+    double radii[3] = {shape.radii.x, shape.radii.y, shape.radii.z};
+    doubles(ui, "Radii [m]##body", base + "/shape/radii", radii, 3);
+    double exponents[2] = {shape.epsilon1, shape.epsilon2};
+    doubles(ui, "Exponents##body", base + "/shape/exponents", exponents, 2);
+    double taper[2] = {shape.taper.kx, shape.taper.ky};
+    doubles(ui, "Taper##body", base + "/shape/taper", taper, 2);
+    double curvature = shape.bend.curvature, angle = shape.bend.angle;
+    doubles(ui, "Bend curvature [1/m]##body", base + "/shape/bend/curvature", &curvature, 1);
+    doubles(ui, "Bend angle [rad]##body", base + "/shape/bend/angle", &angle, 1);
+}
+
+void draw_material(EditorUi& ui, const std::string& base, const std::vector<std::string>& materials,
+                   const SceneBody& body)
+{
+    const char* current = body.material.empty() ? "(default)" : body.material.c_str();
+    if (ImGui::BeginCombo("Material##body", current)) {
+        for (const std::string& name : materials) {
+            if (ImGui::Selectable(name.c_str(), name == body.material))
+                ui.apply(base + "/material", name);
+        }
+        ImGui::EndCombo();
+    }
+    ui.track("Material##body");
+}
+
+void draw_dynamics(EditorUi& ui, const std::string& base, const SceneBody& body)
+{
+    const bool modal = body.dynamics == DynamicsType::Modal;
+    if (ImGui::RadioButton("Rigid##body", !modal) && modal)
+        ui.apply(base + "/dynamics/type", "rigid");
+    ui.track("Rigid##body");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("Modal##body", modal) && !modal)
+        ui.apply(base + "/dynamics/type", "modal");
+    ui.track("Modal##body");
+    int modes = body.def.modal.mode_count;
+    if (ImGui::InputInt("Modes##body", &modes, 1, 4, k_on_enter))
+        ui.apply(base + "/dynamics/modes", modes);
+    ui.track("Modes##body");
+    int lattice[3] = {body.def.modal.lattice[0], body.def.modal.lattice[1], body.def.modal.lattice[2]};
+    if (ImGui::InputInt3("Lattice (0 = auto)##body", lattice, k_on_enter))
+        ui.apply(base + "/dynamics/lattice", Json::array({lattice[0], lattice[1], lattice[2]}));
+    ui.track("Lattice (0 = auto)##body");
+}
+
+} // namespace
+
+void draw_body_window(EditorUi& ui)
+{
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 420, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(420, display.y * 0.55f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Body")) {
+        EditorSession& session = ui.session();
+        const Scene* scene = session.has_world() ? &session.scene() : nullptr;
+        size_t index = 0;
+        while (scene != nullptr && index < scene->bodies.size() &&
+               scene->bodies[index].def.name != ui.selected_body())
+            ++index;
+        if (scene == nullptr || index == scene->bodies.size()) {
+            ImGui::TextDisabled("select a body in the scene tree");
+        } else {
+            // Copies: an applied edit replaces the session's scene (and may rebuild its world) while the
+            // rest of this window is still being drawn from these values.
+            const SceneBody body = scene->bodies[index];
+            std::vector<std::string> materials;
+            for (const MaterialDef& m : scene->materials)
+                materials.push_back(m.name);
+            const std::string base = "/bodies/" + std::to_string(index);
+            ImGui::Text("%s", body.def.name.c_str());
+            const Entity e = find_body(session.world(), body.def.name);
+            if (!e.is_null() && body.def.motion == MotionType::Dynamic)
+                ImGui::Text("mass %.4g kg, density %.4g kg/m^3",
+                            body_mass_properties(session.world(), e).mass, body.def.density);
+            draw_material(ui, base, materials, body);
+            ImGui::Separator();
+            ImGui::TextUnformatted("Shape");
+            draw_shape(ui, base, body.def.shape);
+            if (body.def.shape.type != ShapeType::Plane) {
+                ImGui::Separator();
+                ImGui::TextUnformatted("Dynamics");
+                draw_dynamics(ui, base, body);
+            }
+        }
+    }
+    ImGui::End();
+}
+
+} // namespace supermodal::editor

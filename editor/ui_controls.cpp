@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// Run controls (play, pause, step, reset, save) and the speed↔accuracy panel: the knobs that trade
+// one for the other (dt, substeps, contact path and samples, modes) next to what they cost now.
+#include "supermodal/modal.h"
+#include "ui.h"
+
+#include <algorithm>
+#include <imgui.h>
+
+namespace supermodal::editor
+{
+namespace
+{
+
+constexpr ImGuiInputTextFlags k_on_enter = ImGuiInputTextFlags_EnterReturnsTrue;
+const char* const k_contact_paths[] = {"auto", "sampling", "support_map"};
+
+bool button(EditorUi& ui, const char* label)
+{
+    const bool pressed = ImGui::Button(label);
+    ui.track(label);
+    return pressed;
+}
+
+} // namespace
+
+void draw_controls(EditorUi& ui)
+{
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(310, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(display.x - 740, 150), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Run")) {
+        EditorSession& s = ui.session();
+        if (button(ui, "Play"))
+            s.play();
+        ImGui::SameLine();
+        if (button(ui, "Pause"))
+            s.pause();
+        ImGui::SameLine();
+        if (button(ui, "Step"))
+            s.step(ui.step_count);
+        ImGui::SameLine();
+        if (button(ui, "Reset"))
+            ui.report(s.reset());
+        ImGui::SameLine();
+        if (button(ui, "Save"))
+            ui.report(s.save(ui.save_path));
+        ImGui::SetNextItemWidth(120);
+        ImGui::InputInt("steps per Step", &ui.step_count);
+        ui.step_count = std::clamp(ui.step_count, 1, 100000);
+        ui.track("steps per Step");
+        if (s.has_world())
+            ImGui::Text("%s  t = %.4f s  steps %llu", s.playing() ? "playing" : "paused", s.world().time(),
+                        static_cast<unsigned long long>(s.world().step_count()));
+        if (!ui.last_error().empty())
+            ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", ui.last_error().c_str());
+    }
+    ImGui::End();
+}
+
+void draw_speed_accuracy(EditorUi& ui)
+{
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 420, display.y * 0.55f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(420, display.y * 0.45f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Speed / accuracy")) {
+        EditorSession& s = ui.session();
+        if (!s.has_world()) {
+            ImGui::TextDisabled("no scene loaded");
+            ImGui::End();
+            return;
+        }
+        // A copy: an applied edit replaces the session's scene and world while this window is drawn.
+        const WorldDef w = s.scene().world;
+        double dt = w.dt;
+        if (ImGui::InputDouble("dt [s]##speed", &dt, 0.0, 0.0, "%.6g", k_on_enter))
+            ui.apply("/settings/dt", dt);
+        ui.track("dt [s]##speed");
+        int substeps = w.substep_count;
+        if (ImGui::InputInt("Substeps##speed", &substeps, 1, 4, k_on_enter))
+            ui.apply("/settings/substeps", substeps);
+        ui.track("Substeps##speed");
+        int path = static_cast<int>(w.contact.path);
+        if (ImGui::Combo("Contact path##speed", &path, k_contact_paths, 3))
+            ui.apply("/settings/contact/path", k_contact_paths[path]);
+        ui.track("Contact path##speed");
+        double spacing = w.contact.sample_spacing;
+        if (ImGui::InputDouble("Sample spacing [m] (0 = auto)##speed", &spacing, 0.0, 0.0, "%.4g",
+                               k_on_enter))
+            ui.apply("/settings/contact/sample_spacing", spacing);
+        ui.track("Sample spacing [m] (0 = auto)##speed");
+        int samples = w.contact.max_samples_per_body;
+        if (ImGui::InputInt("Max samples per body##speed", &samples, 100, 1000, k_on_enter))
+            ui.apply("/settings/contact/max_samples_per_body", samples);
+        ui.track("Max samples per body##speed");
+
+        ImGui::Separator();
+        const double ms = s.ms_per_step();
+        ImGui::Text("%.3f ms/step (mean of the last %zu)", ms, EditorSession::k_timing_window);
+        // Real-time factor: simulated seconds per wall-clock second at this cost.
+        if (ms > 0.0)
+            ImGui::Text("%.2fx real time", w.dt * 1000.0 / ms);
+        ImGui::Text("max penetration %.3g m", world_max_penetration(s.world()));
+
+        // The selected body's modes: how many, and how well the eigen solve holds (its largest residual).
+        const Entity e = find_body(s.world(), ui.selected_body());
+        const ModalBasis* basis = e.is_null() ? nullptr : body_modal_basis(s.world(), e);
+        if (basis != nullptr) {
+            const auto& r = basis->diagnostics.mode_residuals;
+            const double worst = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
+            ImGui::Text("modal residual %.2e, f1 = %.4g Hz", worst,
+                        basis->frequencies_hz.empty() ? 0.0 : basis->frequencies_hz.front());
+            ImGui::Text("modal energy %.4g J", body_modal_energy(s.world(), e));
+            // Last: changing the mode count rebuilds the world, and with it `basis` and `e`.
+            int modes = basis->mode_count;
+            if (ImGui::InputInt("Modes##speed", &modes, 1, 4, k_on_enter))
+                ui.apply("/bodies/" + ui.selected_body() + "/dynamics/modes", modes);
+            ui.track("Modes##speed");
+        } else {
+            ImGui::TextDisabled("select a modal body for its modes");
+        }
+    }
+    ImGui::End();
+}
+
+} // namespace supermodal::editor

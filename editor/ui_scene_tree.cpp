@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+// The scene tree: bodies nested under their parents (click one to edit it), then the constraints.
+#include "ui.h"
+
+#include <imgui.h>
+
+namespace supermodal::editor
+{
+namespace
+{
+
+const char* dynamics_tag(const SceneBody& body)
+{
+    if (body.def.shape.type == ShapeType::Plane)
+        return "plane";
+    if (body.dynamics == DynamicsType::Modal)
+        return "modal";
+    return body.def.motion == MotionType::Dynamic  ? "rigid"
+           : body.def.motion == MotionType::Static ? "static"
+                                                   : "kinematic";
+}
+
+void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, int depth)
+{
+    for (const SceneBody& body : scene.bodies) {
+        if (body.parent != parent)
+            continue;
+        const std::string& name = body.def.name;
+        if (depth > 0)
+            ImGui::Indent(12.0f * static_cast<float>(depth));
+        const bool clicked = ImGui::Selectable(name.c_str(), ui.selected_body() == name);
+        ui.track(name.c_str());
+        ImGui::SameLine(200.0f);
+        ImGui::TextDisabled("%s", dynamics_tag(body));
+        if (depth > 0)
+            ImGui::Unindent(12.0f * static_cast<float>(depth));
+        if (clicked)
+            ui.select_body(name);
+        // Parents come before their children in a scene, so this recursion visits each body once.
+        draw_subtree(ui, scene, name, depth + 1);
+    }
+}
+
+} // namespace
+
+void draw_scene_tree(EditorUi& ui)
+{
+    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(300, ImGui::GetIO().DisplaySize.y), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Scene")) {
+        EditorSession& session = ui.session();
+        if (!session.has_world()) {
+            ImGui::TextDisabled("no scene loaded");
+        } else {
+            const Scene& scene = session.scene();
+            ImGui::Text("%zu bodies, %zu constraints", scene.bodies.size(), scene.constraints.size());
+            ImGui::Separator();
+            draw_subtree(ui, scene, "", 0);
+            if (!scene.constraints.empty() && ImGui::CollapsingHeader("Constraints")) {
+                for (const SceneConstraint& c : scene.constraints)
+                    ImGui::BulletText("%s: %s - %s", c.def.name.empty() ? "(unnamed)" : c.def.name.c_str(),
+                                      c.body_a.c_str(), c.body_b.empty() ? "world" : c.body_b.c_str());
+            }
+        }
+    }
+    ImGui::End();
+}
+
+} // namespace supermodal::editor
