@@ -202,8 +202,8 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
                    [](unsigned char c) { return char(std::tolower(c)); });
 
     Assimp::Importer importer;
-    // Points and lines are dropped by the sort step, so "no triangles" is judged on triangles alone.
-    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
+    // assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
     unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
     flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
     const aiScene* scene = importer.ReadFile(path, flags);
