@@ -38,6 +38,7 @@ void expect_recovered(const PosedShape& truth, const sm::FitResult& fit, const c
 {
     SCOPED_TRACE(label);
     ::testing::Test::RecordProperty(std::string(label) + " rms_relative", std::to_string(fit.rms_relative));
+    ::testing::Test::RecordProperty(std::string(label) + " rms_m", std::to_string(fit.rms_m));
     int match[3];
     double sign[3];
     for (int j = 0; j < 3; ++j) {
@@ -55,8 +56,17 @@ void expect_recovered(const PosedShape& truth, const sm::FitResult& fit, const c
         }
         EXPECT_GT(best, 0.99) << "axis " << j << " not matched";
     }
-    for (int j = 0; j < 3; ++j)
+    double radius_error = 0.0;
+    for (int j = 0; j < 3; ++j) {
         EXPECT_NEAR(fit.shape.radii[match[j]] / truth.shape.radii[j], 1.0, k_radius_tol) << "radius " << j;
+        radius_error =
+            std::max(radius_error, std::abs(fit.shape.radii[match[j]] / truth.shape.radii[j] - 1.0));
+    }
+    const double epsilon_error = std::max(std::abs(fit.shape.epsilon1 - truth.shape.epsilon1),
+                                          std::abs(fit.shape.epsilon2 - truth.shape.epsilon2));
+    // Measured values for docs/pipeline.md (--gtest_output=json shows them).
+    ::testing::Test::RecordProperty(std::string(label) + " radius_error", std::to_string(radius_error));
+    ::testing::Test::RecordProperty(std::string(label) + " epsilon_error", std::to_string(epsilon_error));
     const bool same_polar = match[2] == 2;
     if (truth.shape.epsilon1 != truth.shape.epsilon2) {
         EXPECT_TRUE(same_polar) << "polar axis not recovered";
@@ -149,6 +159,13 @@ TEST(Fit, NoisyPointsDegradeGracefully)
         EXPECT_NEAR(radii_fit[i] / radii_true[i], 1.0, 0.03);
     EXPECT_NEAR(f.shape.epsilon1, 0.6, 0.1);
     EXPECT_NEAR(f.shape.epsilon2, 0.8, 0.1);
+    double radius_error = 0.0;
+    for (int i = 0; i < 3; ++i)
+        radius_error = std::max(radius_error, std::abs(radii_fit[i] / radii_true[i] - 1.0));
+    RecordProperty("noisy radius_error", std::to_string(radius_error));
+    RecordProperty("noisy epsilon_error", std::to_string(std::max(std::abs(f.shape.epsilon1 - 0.6),
+                                                                  std::abs(f.shape.epsilon2 - 0.8))));
+    RecordProperty("noisy rms_relative", std::to_string(f.rms_relative));
     RecordProperty("noisy rms/sigma", std::to_string(fit->rms_m / sigma));
 }
 
