@@ -126,6 +126,8 @@ void gather(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
             if (face.mNumIndices != 3)
                 continue;
             const uint32_t a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
+            if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices)
+                continue; // a corrupt file; validation below normally catches it first
             out.mesh.indices.insert(out.mesh.indices.end(),
                                     {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
         }
@@ -204,7 +206,8 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
     Assimp::Importer importer;
     // The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
     // assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
-    unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
+    // Validation rejects out-of-range indices and similar corruption before anything reads them.
+    unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType;
     flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
     const aiScene* scene = importer.ReadFile(path, flags);
     if (scene == nullptr)
