@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev        # modal dynamics: sparse assembly, dense eigen solves
   libspectra-dev       # modal dynamics: shift-invert eigen solves for large lattices
   libccd-dev           # contact: MPR penetration depth of convex pairs
+  libassimp-dev        # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)

@@ -6,6 +6,7 @@ find_package(Eigen3 3.4 CONFIG REQUIRED)   # modal: sparse assembly, dense eigen
 find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)  # modal: shift-invert eigen solves
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CCD REQUIRED IMPORTED_TARGET ccd)  # contact: MPR penetration (libccd, double build)
+find_package(assimp 5.2 CONFIG REQUIRED)  # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
 if(SUPERMODAL_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

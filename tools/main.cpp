@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The `supermodal` command line. Exit status: 0 ok, 2 bad input, 1 internal failure.
 #include "cli_common.h"
+#include "cmd_fit.h"
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -50,6 +51,9 @@ int main(int argc, char** argv)
     modes_cmd->add_option("--count", modes.count, "Show only the lowest K modes")->check(CLI::PositiveNumber);
     modes_cmd->add_flag("--json", modes.json, "Machine-readable output");
 
+    cli::FitOptions fit;
+    CLI::App* fit_cmd = cli::add_fit_command(app, fit);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -69,6 +73,8 @@ int main(int argc, char** argv)
             return cli::inspect_command(inspect);
         if (modes_cmd->parsed())
             return cli::modes_command(modes);
+        if (fit_cmd->parsed())
+            return cli::fit_command(fit);
     } catch (const std::exception& e) {
         cli::print_error(std::string("internal error: ") + e.what());
         return cli::k_exit_internal;

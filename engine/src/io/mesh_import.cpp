@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// Mesh import through assimp: every mesh instance of the node tree is merged into one TriangleMesh,
+// then scaled to metres and turned so the file's up axis becomes +Y. assimp's own unit and axis
+// post-steps are not used: the file's metadata is read here so the choice is visible (ImportedMesh).
+#include "io/mesh_weld.h"
+#include "supermodal/mesh_io.h"
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+namespace supermodal
+{
+namespace
+{
+
+std::optional<double> metadata_number(const aiMetadata* meta, const char* key)
+{
+    if (meta == nullptr)
+        return std::nullopt;
+    for (unsigned i = 0; i < meta->mNumProperties; ++i) {
+        if (std::string(meta->mKeys[i].C_Str()) != key)
+            continue;
+        const aiMetadataEntry& e = meta->mValues[i];
+        switch (e.mType) {
+        case AI_INT32:
+            return double(*static_cast<const int32_t*>(e.mData));
+        case AI_UINT64:
+            return double(*static_cast<const uint64_t*>(e.mData));
+        case AI_FLOAT:
+            return double(*static_cast<const float*>(e.mData));
+        case AI_DOUBLE:
+            return *static_cast<const double*>(e.mData);
+        default:
+            return std::nullopt;
+        }
+    }
+    return std::nullopt;
+}
+
+/// FBX stores its up axis as an index (0 x, 1 y, 2 z) and a sign.
+UpAxis fbx_up_axis(const aiScene& scene)
+{
+    const auto axis = metadata_number(scene.mMetaData, "UpAxis");
+    const auto sign = metadata_number(scene.mMetaData, "UpAxisSign");
+    if (!axis)
+        return UpAxis::PosY;
+    const bool negative = sign && *sign < 0.0;
+    switch (int(*axis)) {
+    case 0:
+        return negative ? UpAxis::NegX : UpAxis::PosX;
+    case 2:
+        return negative ? UpAxis::NegZ : UpAxis::PosZ;
+    default:
+        return negative ? UpAxis::NegY : UpAxis::PosY;
+    }
+}
+
+/// The proper rotation taking the file's up axis to +Y (a quarter or half turn, exact in floating point).
+Mat3 up_rotation(UpAxis up)
+{
+    Mat3 r = Mat3::identity();
+    auto set = [&r](Vec3 r0, Vec3 r1, Vec3 r2) {
+        for (int j = 0; j < 3; ++j) {
+            r.m[0][j] = r0[j];
+            r.m[1][j] = r1[j];
+            r.m[2][j] = r2[j];
+        }
+    };
+    switch (up) {
+    case UpAxis::PosZ: // (x, y, z) → (x, z, −y)
+        set({1, 0, 0}, {0, 0, 1}, {0, -1, 0});
+        break;
+    case UpAxis::NegZ: // (x, y, z) → (x, −z, y)
+        set({1, 0, 0}, {0, 0, -1}, {0, 1, 0});
+        break;
+    case UpAxis::PosX: // (x, y, z) → (−y, x, z)
+        set({0, -1, 0}, {1, 0, 0}, {0, 0, 1});
+        break;
+    case UpAxis::NegX: // (x, y, z) → (y, −x, z)
+        set({0, 1, 0}, {-1, 0, 0}, {0, 0, 1});
+        break;
+    case UpAxis::NegY: // half turn about x
+        set({1, 0, 0}, {0, -1, 0}, {0, 0, -1});
+        break;
+    default:
+        break;
+    }
+    return r;
+}
+
+struct Gather {
+    TriangleMesh mesh;
+    int instances = 0;
+    bool finite = true;
+};
+
+/// Appends every mesh of node and its children with the accumulated node transform.
+void gather(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Gather& out)
+{
+    const aiMatrix4x4 transform = parent * node.mTransformation;
+    aiMatrix3x3 normal_matrix(transform);
+    normal_matrix.Inverse().Transpose();
+    const bool mirrored = transform.Determinant() < 0.0f; // a mirror flips the winding
+    for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+        const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+        if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        const auto base = uint32_t(out.mesh.positions.size());
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+            const aiVector3D p = transform * mesh.mVertices[v];
+            out.mesh.positions.push_back({p.x, p.y, p.z});
+            out.finite = out.finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+            aiVector3D n = mesh.mNormals ? normal_matrix * mesh.mNormals[v] : aiVector3D(0, 0, 0);
+            out.mesh.normals.push_back(normalized(Vec3{n.x, n.y, n.z}));
+        }
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices != 3)
+                continue;
+            const uint32_t a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
+            if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices)
+                continue; // a corrupt file; validation below normally catches it first
+            out.mesh.indices.insert(out.mesh.indices.end(),
+                                    {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
+        }
+        ++out.instances;
+    }
+    for (unsigned c = 0; c < node.mNumChildren; ++c)
+        gather(scene, *node.mChildren[c], transform, out);
+}
+
+Error fail(const std::string& path, std::string what)
+{
+    return Error{path, "", std::move(what)};
+}
+
+} // namespace
+
+ImportDef default_import_def()
+{
+    return {};
+}
+
+const char* up_axis_name(UpAxis axis)
+{
+    switch (axis) {
+    case UpAxis::FromFile:
+        return "from_file";
+    case UpAxis::PosX:
+        return "+x";
+    case UpAxis::PosY:
+        return "+y";
+    case UpAxis::PosZ:
+        return "+z";
+    case UpAxis::NegX:
+        return "-x";
+    case UpAxis::NegY:
+        return "-y";
+    case UpAxis::NegZ:
+        return "-z";
+    }
+    return "unknown";
+}
+
+bool parse_up_axis(const std::string& name, UpAxis& out)
+{
+    for (UpAxis a : {UpAxis::FromFile, UpAxis::PosX, UpAxis::PosY, UpAxis::PosZ, UpAxis::NegX, UpAxis::NegY,
+                     UpAxis::NegZ})
+        if (name == up_axis_name(a) || (name.size() == 1 && "+" + name == up_axis_name(a))) {
+            out = a;
+            return true;
+        }
+    return false;
+}
+
+Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
+{
+    if (!std::isfinite(def.scale) || def.scale < 0.0)
+        return fail(path, "import scale must be finite and >= 0 (0: from the file), found " +
+                              std::to_string(def.scale));
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        return fail(path, "file not found");
+    if (fs::is_directory(path, ec))
+        return fail(path, "is a directory, expected a mesh file");
+    if (!std::ifstream(path, std::ios::binary))
+        return fail(path, "cannot open for reading");
+    if (fs::file_size(path, ec) == 0)
+        return fail(path, "file is empty");
+
+    std::string ext = fs::path(path).extension().string();
+    if (!ext.empty())
+        ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+
+    Assimp::Importer importer;
+    // The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
+    // assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
+    // Validation rejects out-of-range indices and similar corruption before anything reads them.
+    unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType;
+    flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
+    const aiScene* scene = importer.ReadFile(path, flags);
+    if (scene == nullptr)
+        return fail(path, std::string("cannot read mesh (") + (ext.empty() ? "no extension" : ext) +
+                              "): " + importer.GetErrorString());
+    if (scene->mRootNode == nullptr)
+        return fail(path, "the file has no node tree");
+
+    Gather g;
+    gather(*scene, *scene->mRootNode, aiMatrix4x4(), g);
+    if (!g.finite)
+        return fail(path, "a vertex coordinate is not finite (NaN or Inf)");
+    if (g.mesh.indices.empty())
+        return fail(path, "no triangles (the file holds " + std::to_string(scene->mNumMeshes) +
+                              " meshes, none with triangle faces)");
+
+    ImportedMesh out;
+    out.format = ext;
+    out.source_meshes = g.instances;
+    const bool fbx = ext == "fbx";
+    if (def.scale > 0.0)
+        out.scale = def.scale;
+    else if (fbx) // FBX units are centimetres per file unit
+        out.scale = 0.01 * metadata_number(scene->mMetaData, "UnitScaleFactor").value_or(1.0);
+    if (!(std::isfinite(out.scale) && out.scale > 0.0))
+        return fail(path, "the file's unit scale is not a positive number");
+    out.up_axis = def.up_axis != UpAxis::FromFile ? def.up_axis : (fbx ? fbx_up_axis(*scene) : UpAxis::PosY);
+
+    const Mat3 r = up_rotation(out.up_axis);
+    for (Vec3& p : g.mesh.positions)
+        p = r * p * out.scale;
+    for (Vec3& n : g.mesh.normals)
+        n = r * n;
+    out.mesh = def.weld_vertices ? weld_mesh(g.mesh) : std::move(g.mesh);
+    if (out.mesh.indices.empty())
+        return fail(path, "no triangles with three distinct vertices");
+    return out;
+}
+
+} // namespace supermodal
