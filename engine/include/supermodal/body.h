@@ -9,8 +9,8 @@
 #include "supermodal/shape.h"
 
 #include <array>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,7 +49,8 @@ struct ModalBodyDef {
     /// von Mises yield stress σ_y [Pa], > 0; past it the rest shape moves (plastic relief, the paper's
     /// clay moulding, docs/modal.md). ∞ (the default): elastic.
     double yield_stress = std::numeric_limits<double>::infinity();
-    double hardening = 0.0; ///< Linear hardening modulus H [Pa], ≥ 0: yield grows by H per unit plastic strain.
+    double hardening =
+        0.0; ///< Linear hardening modulus H [Pa], ≥ 0: yield grows by H per unit plastic strain.
     /// Accumulated equivalent plastic strain [-], > 0, past which the body flows no more; ∞: no limit.
     double max_plastic_strain = std::numeric_limits<double>::infinity();
 };

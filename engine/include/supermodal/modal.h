@@ -206,12 +206,12 @@ struct ModalAccuracy {
     /// rigid acceleration, C the modal damping) and F the last substep's nodal loads. 0 when all modes
     /// are kept (to the eigensolver's accuracy); near 1 when the modes cannot represent the load.
     double residual = 0.0;
-    double residual_norm = 0.0;      ///< ‖R‖ [N/√kg].
-    double load_norm = 0.0;          ///< Euclidean norm of F over the nodes [N].
-    double static_energy = 0.0;      ///< ½ u_sᵀ K u_s of the full lattice's static (inertia-relieved)
-                                     ///< response u_s to F [J].
-    double truncated_energy = 0.0;   ///< The part of it the dropped modes carry, ½ dᵀ K d with
-                                     ///< d = u_s − Φ Ω⁻² Φᵀ F [J] (= Σ_(k > r) (φ_kᵀF)² / 2ω_k²).
+    double residual_norm = 0.0;    ///< ‖R‖ [N/√kg].
+    double load_norm = 0.0;        ///< Euclidean norm of F over the nodes [N].
+    double static_energy = 0.0;    ///< ½ u_sᵀ K u_s of the full lattice's static (inertia-relieved)
+                                   ///< response u_s to F [J].
+    double truncated_energy = 0.0; ///< The part of it the dropped modes carry, ½ dᵀ K d with
+                                   ///< d = u_s − Φ Ω⁻² Φᵀ F [J] (= Σ_(k > r) (φ_kᵀF)² / 2ω_k²).
     double truncated_fraction = 0.0; ///< truncated_energy / static_energy [-].
 };
 /// The accuracy report of a modal body (zeros for a rigid body, or one without loads and deformation).

@@ -114,8 +114,7 @@ ModalAccuracy evaluate_accuracy(const AccuracyModel& m, const ModalBasis& basis,
     const Eigen::VectorXd u = phi * elastic;
     const Eigen::VectorXd rigid_load = m.rigid.transpose() * f; // Ψᵀ F: the rigid accelerations
     const Eigen::VectorXd ku = m.stiffness * u;
-    const Eigen::VectorXd residual =
-        m.mass * (phi * accel_plus_damping + m.rigid * rigid_load) + ku - f;
+    const Eigen::VectorXd residual = m.mass * (phi * accel_plus_damping + m.rigid * rigid_load) + ku - f;
     out.residual_norm = inverse_mass_norm(m, residual);
     out.load_norm = f.norm();
     const double scale = std::max(inverse_mass_norm(m, f), inverse_mass_norm(m, ku));

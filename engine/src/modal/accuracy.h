@@ -18,8 +18,8 @@ namespace supermodal::modal
 
 /// The full lattice of a basis with what the report needs factored once.
 struct AccuracyModel {
-    SparseMatrix stiffness, mass;           ///< K [N/m], M [kg] (3n × 3n).
-    Eigen::MatrixXd rigid;                  ///< (3n × 6) rigid motions, M-orthonormal: Ψᵀ M Ψ = I.
+    SparseMatrix stiffness, mass; ///< K [N/m], M [kg] (3n × 3n).
+    Eigen::MatrixXd rigid;        ///< (3n × 6) rigid motions, M-orthonormal: Ψᵀ M Ψ = I.
     Eigen::SimplicialLDLT<SparseMatrix> mass_solver;   ///< M⁻¹ for the norms.
     Eigen::SimplicialLDLT<SparseMatrix> pinned_solver; ///< K with six pinned dofs (static solves).
     std::array<int, 6> pinned{};                       ///< The pinned dofs.
@@ -28,7 +28,7 @@ struct AccuracyModel {
 /// Assembles the lattice of `def` (the def the basis was built from) and factors M and the pinned K.
 /// Errors: the lattice does not match the basis, or a factorisation fails.
 [[nodiscard]] Result<std::unique_ptr<AccuracyModel>> build_accuracy_model(const ModalBasisDef& def,
-                                                                         const ModalBasis& basis);
+                                                                          const ModalBasis& basis);
 
 /// A basis's AccuracyModel, built on first use and shared (ModalSurface::accuracy). Thread-safe.
 struct AccuracyCache {
@@ -45,8 +45,8 @@ struct AccuracyCache {
 
 /// One body's reduced state and the loads of its last substep, body frame.
 struct AccuracyInput {
-    std::span<const double> nodal_force; ///< (3n) F [N], the loads lumped on the lattice nodes.
-    std::span<const double> modal_force; ///< (r) Q [N/√kg] the modes were driven with.
+    std::span<const double> nodal_force;         ///< (3n) F [N], the loads lumped on the lattice nodes.
+    std::span<const double> modal_force;         ///< (r) Q [N/√kg] the modes were driven with.
     std::span<const double> q, q_dot, q_plastic; ///< (r) each.
     std::span<const double> omega;               ///< (r) [rad/s].
 };

@@ -90,7 +90,8 @@ BodyPlasticState body_plastic_state(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return {};
-    return {b->q_plastic, b->plastic_strain, b->plastic.yield_stress + b->plastic.hardening * b->plastic_strain};
+    return {b->q_plastic, b->plastic_strain,
+            b->plastic.yield_stress + b->plastic.hardening * b->plastic_strain};
 }
 
 ModalAccuracy body_modal_accuracy(const World& world, Entity e)

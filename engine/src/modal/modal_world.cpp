@@ -34,7 +34,8 @@ std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider>
                 d[a] += lw.weights[j] * phi[a];
         }
     }
-    surface->stress = std::make_shared<const modal::StressModel>(modal::build_stress_model(*basis, rest->shape));
+    surface->stress =
+        std::make_shared<const modal::StressModel>(modal::build_stress_model(*basis, rest->shape));
     surface->accuracy = std::make_shared<modal::AccuracyCache>();
     ModalBasisDef& def = surface->accuracy->def; // what modal_basis_def() gave the basis, from the basis
     def.shape = rest->shape;
@@ -170,7 +171,8 @@ void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const
     if (ModalBody* b = reg.find<ModalBody>(e)) {
         add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->host_force);
         // Also lumped, for the accuracy report's F (the projection above keeps the exact point's field).
-        if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->host_nodal_load))
+        if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
+                      b->host_nodal_load))
             b->has_host_nodal_load = true;
     }
 }
@@ -250,7 +252,8 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
             double elastic = b.q[k] - b.q_plastic[k];
             if (b.integrator == ModalIntegrator::CentralDifference) {
                 if (b.omega[k] * h < modal::k_central_difference_limit) {
-                    modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic, b.q_dot[k]);
+                    modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic,
+                                                   b.q_dot[k]);
                     b.q[k] = elastic + b.q_plastic[k];
                     continue;
                 }

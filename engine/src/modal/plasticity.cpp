@@ -25,7 +25,8 @@ PlasticStep relieve_plastic(const StressModel& model, const PlasticParams& param
     const double room = params.max_plastic_strain - io_plastic_strain;
     if (out.trial_von_mises <= current_yield || !(room > 0.0))
         return out;
-    const double d_strain = std::min((out.trial_von_mises - current_yield) / (young + params.hardening), room);
+    const double d_strain =
+        std::min((out.trial_von_mises - current_yield) / (young + params.hardening), room);
     const double target = out.trial_von_mises - young * d_strain;
     const double moved = 1.0 - target / out.trial_von_mises; // in (0, 1]
     for (size_t k = 0; k < r; ++k)

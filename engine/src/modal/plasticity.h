@@ -14,10 +14,11 @@ namespace supermodal::modal
 /// A material's plastic behaviour (equivalent uniaxial, von Mises).
 struct PlasticParams {
     double yield_stress = std::numeric_limits<double>::infinity(); ///< σ_y [Pa], > 0; ∞ = elastic.
-    double hardening = 0.0;        ///< Linear hardening modulus H [Pa], ≥ 0: the yield stress grows by
-                                   ///< H per unit of accumulated plastic strain.
-    double max_plastic_strain = std::numeric_limits<double>::infinity(); ///< Accumulated plastic strain
-                                   ///< [-] past which the body flows no more (fully worked).
+    double hardening = 0.0; ///< Linear hardening modulus H [Pa], ≥ 0: the yield stress grows by
+                            ///< H per unit of accumulated plastic strain.
+    double max_plastic_strain =
+        std::numeric_limits<double>::infinity(); ///< Accumulated plastic strain
+                                                 ///< [-] past which the body flows no more (fully worked).
     [[nodiscard]] bool plastic() const { return yield_stress < std::numeric_limits<double>::infinity(); }
 };
 

@@ -73,12 +73,9 @@ Voigt stress_from(const ModalBasis& basis, const Gradients& g, const Lame& lame,
     }
     const double trace = du[0][0] + du[1][1] + du[2][2];
     const double two_mu = 2.0 * lame.mu;
-    return {lame.lambda * trace + two_mu * du[0][0],
-            lame.lambda * trace + two_mu * du[1][1],
-            lame.lambda * trace + two_mu * du[2][2],
-            lame.mu * (du[1][2] + du[2][1]),
-            lame.mu * (du[0][2] + du[2][0]),
-            lame.mu * (du[0][1] + du[1][0])};
+    return {lame.lambda * trace + two_mu * du[0][0], lame.lambda * trace + two_mu * du[1][1],
+            lame.lambda * trace + two_mu * du[2][2], lame.mu * (du[1][2] + du[2][1]),
+            lame.mu * (du[0][2] + du[2][0]),         lame.mu * (du[0][1] + du[1][0])};
 }
 
 bool inside(const ShapeDef& shape, const Vec3& p)

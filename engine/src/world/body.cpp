@@ -116,7 +116,8 @@ Status validate(const BodyDef& def)
         if (!(def.modal.hardening >= 0.0) || !std::isfinite(def.modal.hardening))
             return Error{"", "modal/hardening", "expected a finite hardening modulus >= 0 Pa"};
         if (!(def.modal.max_plastic_strain > 0.0))
-            return Error{"", "modal/max_plastic_strain", "expected a plastic strain limit > 0 (infinity: none)"};
+            return Error{"", "modal/max_plastic_strain",
+                         "expected a plastic strain limit > 0 (infinity: none)"};
         if (Status s = validate(modal_basis_def(def)); !s)
             return Error{"", "modal" + s.error().where, s.error().what};
     }
