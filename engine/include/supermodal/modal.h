@@ -233,6 +233,19 @@ struct BodyStress {
 /// von Mises equivalent of a Voigt stress [Pa].
 [[nodiscard]] double von_mises_stress(const std::array<double, 6>& voigt);
 
+/// Inside-outside test of a body's current (deformed) shape at a world point.
+struct BodyPointTest {
+    bool inside = false;
+    double depth = 0.0; ///< Approximate distance to the surface [m] (measure / |gradient|), if inside.
+    Vec3 normal{};      ///< Unit outward normal of the deformed surface, world frame, if inside.
+    Vec3 rest_point{};  ///< The rest point [m] (shape frame) the point came from (modal bodies).
+};
+/// For a modal body the point is mapped back to the rest shape by Newton's method on the deformation
+/// field (X + u(X) = p), tested there, and the rest gradient carried forward by F⁻ᵀ (F = I + ∇u); where
+/// Newton fails (a folded field) the point counts as outside. Rigid bodies: the shape's own test.
+/// (Contact does not use this yet: docs/modal.md "Deformed surfaces".)
+[[nodiscard]] BodyPointTest body_point_test(const World& world, Entity body, const Vec3& world_point);
+
 /// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
 /// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).
 [[nodiscard]] Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);

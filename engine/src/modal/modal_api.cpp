@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Public queries and setters of modal bodies (engine/include/supermodal/modal.h, bottom section).
+#include "contact/narrowphase.h"
 #include "core/assert.h"
 #include "modal/accuracy.h"
+#include "modal/inverse_map.h"
 #include "modal/modal_world.h"
 #include "modal/stress.h"
 #include "supermodal/modal.h"
@@ -145,6 +147,42 @@ std::array<double, 6> body_stress_at(const World& world, Entity e, const Vec3& p
 double von_mises_stress(const std::array<double, 6>& voigt)
 {
     return modal::von_mises(voigt);
+}
+
+BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_point)
+{
+    BodyPointTest out;
+    if (!live(world, e) || !is_finite(world_point))
+        return out;
+    const World::Impl& w = world.impl();
+    const Pose& p = w.reg.get<Pose>(e);
+    const BodyModel& m = w.reg.get<BodyModel>(e);
+    // The rest shape's collider (a modal body's own collider holds deformed samples, same shape).
+    const Collider& c = *m.collider;
+    const Vec3 local = inv_rotate(p.orientation, world_point - p.position) + m.mass.center_of_mass;
+    const ModalBody* b = modal_of(world, e);
+    Vec3 rest = local;
+    Mat3 forward = Mat3::identity(); // F⁻ᵀ
+    if (b != nullptr) {
+        const modal::InverseMap inv = modal::invert_deformation(*b->basis, b->q, local);
+        if (!inv.converged)
+            return out;
+        rest = inv.rest_point;
+        forward = transpose(inv.inverse_deformation);
+    }
+    out.rest_point = rest;
+    const InsideTest t = test_point(c, rest);
+    if (!t.inside)
+        return out;
+    // depth = −m/|g| at rest; deformed: −m/|F⁻ᵀ g| = depth_rest / |F⁻ᵀ n|, normal along F⁻ᵀ n.
+    const Vec3 n = forward * t.normal;
+    const double scale = length(n);
+    if (!(scale > 0.0) || !std::isfinite(scale))
+        return out;
+    out.inside = true;
+    out.depth = t.depth / scale;
+    out.normal = rotate(p.orientation, n / scale);
+    return out;
 }
 
 Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)

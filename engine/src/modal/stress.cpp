@@ -103,6 +103,28 @@ Voigt stress_at(const ModalBasis& basis, const Vec3& point_shape, std::span<cons
     return stress_from(basis, g, lame_from(basis.young, basis.poisson), q.data(), used);
 }
 
+void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q,
+                               Vec3& out_u, Mat3& out_gradient)
+{
+    out_u = {};
+    out_gradient = {};
+    const int r = basis.mode_count;
+    const int used = std::min(r, static_cast<int>(q.size()));
+    const Gradients g = gradients_at(basis, point_shape);
+    const LatticeWeights w = modal_weights(basis, point_shape); // same cell and nodes as g
+    for (int a = 0; a < g.count; ++a) {
+        const double* phi = &basis.mode_shapes[static_cast<size_t>(g.nodes[a]) * 3 * r];
+        for (int i = 0; i < 3; ++i) {
+            double u = 0.0;
+            for (int k = 0; k < used; ++k)
+                u += phi[i * r + k] * q[k];
+            out_u[i] += w.weights[a] * u;
+            for (int j = 0; j < 3; ++j)
+                out_gradient.m[i][j] += g.grad[a][j] * u;
+        }
+    }
+}
+
 StressModel build_stress_model(const ModalBasis& basis, const ShapeDef& shape)
 {
     StressModel m;

@@ -22,6 +22,10 @@ using Voigt = std::array<double, 6>;
 /// from the field of the point's cell (or its proxy's, extended, like modal_weights).
 [[nodiscard]] Voigt stress_at(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q);
 
+/// Displacement u [m] and its gradient J_ij = ∂u_i/∂x_j [-] at a rest point (shape frame) for amplitudes q.
+void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q,
+                               Vec3& out_u, Mat3& out_gradient);
+
 /// Where a body's stress is checked, and the stress per unit amplitude there: per cell with nodes, the
 /// 3×3×3 points ξ ∈ {−1, 0, 1}³ (corners, edge and face midpoints, centre) that lie in the body. The
 /// outer ones sit on the lattice box, where bending and torsion stresses peak (Gauss points would sit
