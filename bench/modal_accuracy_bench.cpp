@@ -110,4 +110,33 @@ BENCHMARK(BM_ModalStress_StepWithPlasticity)
     ->Args({1, 1})
     ->Unit(benchmark::kMicrosecond);
 
+// body_point_test on a deformed body (Newton on the deformation field) against the rigid rest test, for
+// points just inside the top of the body. Args: body, modal (0: the same shape, rigid).
+void BM_ModalInverseMap_PointTest(benchmark::State& st)
+{
+    const int which = static_cast<int>(st.range(0));
+    sm::WorldDef wd = sm::default_world_def();
+    wd.gravity = {};
+    sm::World world(wd);
+    sm::BodyDef def = body(which, 12);
+    def.modal.enabled = st.range(1) != 0;
+    const sm::Entity b = sm::create_body(world, def);
+    if (def.modal.enabled) {
+        std::vector<double> q(12, 1e-4), v(12, 0.0);
+        (void)sm::set_body_modal_state(world, b, q, v);
+    }
+    const double top = which == 0 ? 0.019 : 0.5;
+    int i = 0;
+    for (auto _ : st) {
+        const double x = -0.4 + 0.8 * ((i++ % 97) / 97.0);
+        benchmark::DoNotOptimize(sm::body_point_test(world, b, {x, top * 0.9, 0.0}));
+    }
+}
+BENCHMARK(BM_ModalInverseMap_PointTest)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Unit(benchmark::kNanosecond);
+
 } // namespace
