@@ -181,14 +181,14 @@ class World;
 
 /// Modal amplitudes and their rates; empty for a rigid body.
 struct BodyModalState {
-    std::vector<double> amplitudes; ///< (r) q [√kg·m].
+    std::vector<double> amplitudes; ///< (r) q [√kg·m], whole shape (the plastic offsets q_p included).
     std::vector<double> velocities; ///< (r) q̇ [√kg·m/s]; with central difference, half a step behind q.
 };
 [[nodiscard]] BodyModalState body_modal_state(const World& world, Entity body);
 /// Sets a modal body's amplitudes and rates (both of its mode count, finite); its surface follows.
 Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
                             std::span<const double> velocities);
-/// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² q²) [J]; 0 for a rigid body.
+/// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² (q − q_p)²) [J]; 0 for a rigid body.
 [[nodiscard]] double body_modal_energy(const World& world, Entity body);
 /// The plastic part of a modal body's state (BodyModalState's companion; zero for elastic bodies).
 struct BodyPlasticState {
