@@ -39,9 +39,9 @@ const std::vector<std::string_view> k_contact_keys = {"path"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
-const std::vector<std::string_view> k_material_keys = {
-    "density",       "young",        "poisson",  "friction", "restitution",
-    "damping_ratio", "yield_stress", "hardening", "max_plastic_strain"};
+const std::vector<std::string_view> k_material_keys = {"density",      "young",       "poisson",
+                                                       "friction",     "restitution", "damping_ratio",
+                                                       "yield_stress", "hardening",   "max_plastic_strain"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
 // Same bound as validate(const WorldDef&) on thread_count.
