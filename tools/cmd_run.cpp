@@ -2,6 +2,7 @@
 // `supermodal run`: load a scene, step it, write a JSON summary (and optionally a CSV trace).
 #include "cli_common.h"
 #include "constraint_summary.h"
+#include "modal_summary.h"
 #include "supermodal/constraint.h"
 
 #include <algorithm>
@@ -200,6 +201,7 @@ int run_command(const RunOptions& opt)
     nlohmann::json bodies = nlohmann::json::array();
     for (Entity b : world_bodies(world))
         bodies.push_back(body_summary(world, b));
+    add_modal_summaries(world, bodies);
     const nlohmann::json summary = {
         {"scene", opt.scene},
         {"steps", steps},

@@ -137,3 +137,30 @@ TEST(SceneModal, BasisBuildFailureIsReportedByBuildWorld)
     EXPECT_EQ(world.error().where, "/bodies/0/dynamics");
     EXPECT_NE(world.error().what.find("cannot build the modal basis"), std::string::npos);
 }
+
+TEST(SceneModal, ReadsPlasticityFromTheMaterial)
+{
+    const std::string json =
+        R"({"materials": {"clay": {"density": 1800, "young": 2e6, "yield_stress": 2e4, "hardening": 1e5,
+      "max_plastic_strain": 0.3}}, "bodies": [
+      {"name": "ball", "material": "clay", "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.1]},
+       "dynamics": {"type": "modal", "modes": 6}}]})";
+    const sm::Result<sm::Scene> scene = sm::parse_scene(json);
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::ModalBodyDef& modal = scene->bodies[0].def.modal;
+    EXPECT_EQ(modal.yield_stress, 2e4);
+    EXPECT_EQ(modal.hardening, 1e5);
+    EXPECT_EQ(modal.max_plastic_strain, 0.3);
+    sm::Result<sm::World> world = sm::build_world(*scene);
+    ASSERT_TRUE(world) << world.error().message();
+    EXPECT_EQ(sm::body_plastic_state(*world, sm::find_body(*world, "ball")).yield_stress, 2e4);
+
+    const auto material_error = [](std::string_view fields, std::string_view where, std::string_view phrase) {
+        const std::string text = R"({"materials": {"clay": {)" + std::string(fields) + R"(}}, "bodies": []})";
+        return fails_at(text, where, phrase);
+    };
+    EXPECT_TRUE(material_error(R"("hardening": -1)", "/materials/clay/hardening", "expected a number >= 0"));
+    EXPECT_TRUE(material_error(R"("max_plastic_strain": 0)", "/materials/clay/max_plastic_strain",
+                               "expected a number > 0"));
+    EXPECT_TRUE(material_error(R"("yield_stres": 1)", "/materials/clay/yield_stres", "\"yield_stress\""));
+}

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,6 +46,13 @@ struct ModalBodyDef {
     double damping_ratio = 0.01; ///< ζ of every mode [-], ≥ 0 (1 = critical).
     double young = 1e9;          ///< Young's modulus E [Pa], > 0. Density is BodyDef::density.
     double poisson = 0.3;        ///< Poisson's ratio ν [-], in (−1, 0.5).
+    /// von Mises yield stress σ_y [Pa], > 0; past it the rest shape moves (plastic relief, the paper's
+    /// clay moulding, docs/modal.md). ∞ (the default): elastic.
+    double yield_stress = std::numeric_limits<double>::infinity();
+    double hardening =
+        0.0; ///< Linear hardening modulus H [Pa], ≥ 0: yield grows by H per unit plastic strain.
+    /// Accumulated equivalent plastic strain [-], > 0, past which the body flows no more; ∞: no limit.
+    double max_plastic_strain = std::numeric_limits<double>::infinity();
 };
 
 /// How to make a body. Start from default_body_def() and change what differs.

@@ -181,15 +181,71 @@ class World;
 
 /// Modal amplitudes and their rates; empty for a rigid body.
 struct BodyModalState {
-    std::vector<double> amplitudes; ///< (r) q [√kg·m].
+    std::vector<double> amplitudes; ///< (r) q [√kg·m], whole shape (the plastic offsets q_p included).
     std::vector<double> velocities; ///< (r) q̇ [√kg·m/s]; with central difference, half a step behind q.
 };
 [[nodiscard]] BodyModalState body_modal_state(const World& world, Entity body);
 /// Sets a modal body's amplitudes and rates (both of its mode count, finite); its surface follows.
 Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
                             std::span<const double> velocities);
-/// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² q²) [J]; 0 for a rigid body.
+/// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² (q − q_p)²) [J]; 0 for a rigid body.
 [[nodiscard]] double body_modal_energy(const World& world, Entity body);
+/// The plastic part of a modal body's state (BodyModalState's companion; zero for elastic bodies).
+struct BodyPlasticState {
+    std::vector<double> offsets; ///< (r) q_p [√kg·m]: the rest shape has moved by Σ φ_k q_p,k.
+    double plastic_strain = 0.0; ///< Accumulated equivalent plastic strain at the yielding points [-].
+    double yield_stress = 0.0;   ///< Current yield σ_y + H ε_p [Pa]; ∞ for an elastic body.
+};
+[[nodiscard]] BodyPlasticState body_plastic_state(const World& world, Entity body);
+
+/// How far a modal body's reduced solution is from its full lattice, for the loads of its last substep
+/// (docs/modal.md, "Accuracy report"). All in the body frame.
+struct ModalAccuracy {
+    /// ‖R‖ / max(‖F‖, ‖K u‖) [-], norms ‖x‖ = √(xᵀ M⁻¹ x), where R = M ü + C u̇ + K u − F is the full
+    /// lattice's residual on the reduced solution (u = Φ(q − q_p), ü from the modal equation plus the
+    /// rigid acceleration, C the modal damping) and F the last substep's nodal loads. 0 when all modes
+    /// are kept (to the eigensolver's accuracy); near 1 when the modes cannot represent the load.
+    double residual = 0.0;
+    double residual_norm = 0.0;    ///< ‖R‖ [N/√kg].
+    double load_norm = 0.0;        ///< Euclidean norm of F over the nodes [N].
+    double static_energy = 0.0;    ///< ½ u_sᵀ K u_s of the full lattice's static (inertia-relieved)
+                                   ///< response u_s to F [J].
+    double truncated_energy = 0.0; ///< The part of it the dropped modes carry, ½ dᵀ K d with
+                                   ///< d = u_s − Φ Ω⁻² Φᵀ F [J] (= Σ_(k > r) (φ_kᵀF)² / 2ω_k²).
+    double truncated_fraction = 0.0; ///< truncated_energy / static_energy [-].
+};
+/// The accuracy report of a modal body (zeros for a rigid body, or one without loads and deformation).
+/// The first call for a basis assembles its lattice and factors K and M (about as long as the basis's
+/// assembly plus two sparse factorisations); later calls cost a few sparse products and solves.
+[[nodiscard]] ModalAccuracy body_modal_accuracy(const World& world, Entity body);
+
+/// Stress of a modal body's elastic deformation (q − q_p).
+struct BodyStress {
+    double max_von_mises = 0.0; ///< Largest von Mises stress over the body's stress points [Pa].
+    Vec3 where{};               ///< Its rest position [m], shape frame.
+};
+/// Largest von Mises stress over the stress points (per lattice cell, the 27 points ξ ∈ {−1, 0, 1}³
+/// that lie in the body; docs/modal.md "Stress and plasticity"). Zero for a rigid body.
+[[nodiscard]] BodyStress body_max_stress(const World& world, Entity body);
+/// Stress tensor [Pa], shape frame, at a rest point [m] of a modal body's elastic deformation, Voigt order
+/// (xx, yy, zz, yz, xz, xy); zeros for a rigid body.
+[[nodiscard]] std::array<double, 6> body_stress_at(const World& world, Entity body, const Vec3& point_shape);
+/// von Mises equivalent of a Voigt stress [Pa].
+[[nodiscard]] double von_mises_stress(const std::array<double, 6>& voigt);
+
+/// Inside-outside test of a body's current (deformed) shape at a world point.
+struct BodyPointTest {
+    bool inside = false;
+    double depth = 0.0; ///< Approximate distance to the surface [m] (measure / |gradient|), if inside.
+    Vec3 normal{};      ///< Unit outward normal of the deformed surface, world frame, if inside.
+    Vec3 rest_point{};  ///< The rest point [m] (shape frame) the point came from (modal bodies).
+};
+/// For a modal body the point is mapped back to the rest shape by Newton's method on the deformation
+/// field (X + u(X) = p), tested there, and the rest gradient carried forward by F⁻ᵀ (F = I + ∇u); where
+/// Newton fails (a folded field) the point counts as outside. Rigid bodies: the shape's own test.
+/// (Contact does not use this yet: docs/modal.md "Deformed surfaces".)
+[[nodiscard]] BodyPointTest body_point_test(const World& world, Entity body, const Vec3& world_point);
+
 /// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
 /// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).
 [[nodiscard]] Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);

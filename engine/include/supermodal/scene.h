@@ -26,6 +26,8 @@ struct MaterialDef {
     double restitution = 0.2;                                      ///< [-], in [0, 1].
     double damping_ratio = 0.01;                                   ///< Modal damping ratio [-], ≥ 0.
     double yield_stress = std::numeric_limits<double>::infinity(); ///< von Mises yield [Pa], > 0.
+    double hardening = 0.0; ///< Linear hardening modulus [Pa], ≥ 0 (modal plasticity).
+    double max_plastic_strain = std::numeric_limits<double>::infinity(); ///< Plastic flow limit [-], > 0.
 };
 
 /// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto

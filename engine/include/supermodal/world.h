@@ -92,7 +92,8 @@ struct Snapshot {
     std::vector<uint64_t> manifold_keys;
     std::vector<int> manifold_counts;
     std::vector<Vec3> manifold_points;
-    std::vector<double> modal_values; ///< Modal bodies in index order: amplitudes, rates, host forces.
+    std::vector<double> modal_values; ///< Modal bodies in index order: amplitudes, rates, host forces,
+                                      ///< plastic offsets (r each), accumulated plastic strain.
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.

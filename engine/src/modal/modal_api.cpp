@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Public queries and setters of modal bodies (engine/include/supermodal/modal.h, bottom section).
+#include "contact/narrowphase.h"
 #include "core/assert.h"
+#include "modal/accuracy.h"
+#include "modal/inverse_map.h"
 #include "modal/modal_world.h"
+#include "modal/stress.h"
 #include "supermodal/modal.h"
 #include "world/world_impl.h"
 
@@ -78,8 +82,107 @@ double body_modal_energy(const World& world, Entity e)
         return 0.0;
     double energy = 0.0;
     for (size_t k = 0; k < b->q.size(); ++k)
-        energy += b->q_dot[k] * b->q_dot[k] + b->omega[k] * b->omega[k] * b->q[k] * b->q[k];
+        energy += b->q_dot[k] * b->q_dot[k] +
+                  b->omega[k] * b->omega[k] * (b->q[k] - b->q_plastic[k]) * (b->q[k] - b->q_plastic[k]);
     return 0.5 * energy;
+}
+
+BodyPlasticState body_plastic_state(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return {};
+    return {b->q_plastic, b->plastic_strain,
+            b->plastic.yield_stress + b->plastic.hardening * b->plastic_strain};
+}
+
+ModalAccuracy body_modal_accuracy(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return {};
+    const modal::AccuracyModel* model = b->surface->accuracy->get(*b->basis);
+    if (model == nullptr)
+        return {};
+    modal::AccuracyInput in;
+    in.nodal_force = b->last_nodal_load;
+    in.modal_force = b->last_load;
+    in.q = b->q;
+    in.q_dot = b->q_dot;
+    in.q_plastic = b->q_plastic;
+    in.omega = b->omega;
+    return modal::evaluate_accuracy(*model, *b->basis, in);
+}
+
+namespace
+{
+std::vector<double> elastic_part(const ModalBody& b)
+{
+    std::vector<double> q(b.q.size());
+    for (size_t k = 0; k < q.size(); ++k)
+        q[k] = b.q[k] - b.q_plastic[k];
+    return q;
+}
+} // namespace
+
+BodyStress body_max_stress(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return {};
+    const modal::StressPeak peak = modal::max_von_mises(*b->surface->stress, elastic_part(*b));
+    if (peak.point < 0)
+        return {};
+    return {peak.von_mises, b->surface->stress->points[static_cast<size_t>(peak.point)]};
+}
+
+std::array<double, 6> body_stress_at(const World& world, Entity e, const Vec3& point_shape)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr || !is_finite(point_shape))
+        return {};
+    return modal::stress_at(*b->basis, point_shape, elastic_part(*b));
+}
+
+double von_mises_stress(const std::array<double, 6>& voigt)
+{
+    return modal::von_mises(voigt);
+}
+
+BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_point)
+{
+    BodyPointTest out;
+    if (!live(world, e) || !is_finite(world_point))
+        return out;
+    const World::Impl& w = world.impl();
+    const Pose& p = w.reg.get<Pose>(e);
+    const BodyModel& m = w.reg.get<BodyModel>(e);
+    // The rest shape's collider (a modal body's own collider holds deformed samples, same shape).
+    const Collider& c = *m.collider;
+    const Vec3 local = inv_rotate(p.orientation, world_point - p.position) + m.mass.center_of_mass;
+    const ModalBody* b = modal_of(world, e);
+    Vec3 rest = local;
+    Mat3 forward = Mat3::identity(); // F⁻ᵀ
+    if (b != nullptr) {
+        const modal::InverseMap inv = modal::invert_deformation(*b->basis, b->q, local);
+        if (!inv.converged)
+            return out;
+        rest = inv.rest_point;
+        forward = transpose(inv.inverse_deformation);
+    }
+    out.rest_point = rest;
+    const InsideTest t = test_point(c, rest);
+    if (!t.inside)
+        return out;
+    // depth = −m/|g| at rest; deformed: −m/|F⁻ᵀ g| = depth_rest / |F⁻ᵀ n|, normal along F⁻ᵀ n.
+    const Vec3 n = forward * t.normal;
+    const double scale = length(n);
+    if (!(scale > 0.0) || !std::isfinite(scale))
+        return out;
+    out.inside = true;
+    out.depth = t.depth / scale;
+    out.normal = rotate(p.orientation, n / scale);
+    return out;
 }
 
 Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)

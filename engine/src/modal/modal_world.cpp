@@ -2,6 +2,8 @@
 #include "modal/modal_world.h"
 
 #include "dynamics/integrate.h"
+#include "modal/accuracy.h"
+#include "modal/stress.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -32,6 +34,17 @@ std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider>
                 d[a] += lw.weights[j] * phi[a];
         }
     }
+    surface->stress =
+        std::make_shared<const modal::StressModel>(modal::build_stress_model(*basis, rest->shape));
+    surface->accuracy = std::make_shared<modal::AccuracyCache>();
+    ModalBasisDef& def = surface->accuracy->def; // what modal_basis_def() gave the basis, from the basis
+    def.shape = rest->shape;
+    def.density = basis->density;
+    def.young = basis->young;
+    def.poisson = basis->poisson;
+    def.lattice.cells = basis->cells;
+    def.lattice.element_order = basis->element_order;
+    def.mode_count = basis->mode_count;
     surface->rest = std::move(rest);
     surface->basis = std::move(basis);
     return surface;
@@ -64,6 +77,24 @@ void add_load(const ModalBody& b, const BodyModel& m, const Pose& p, const Vec3&
         for (size_t k = 0; k < r; ++k)
             io_q[k] += wx * phi[k] + wy * phi[r + k] + wz * phi[2 * r + k];
     }
+}
+
+// f [N] at world point x lumped on the lattice nodes of x's cell, body frame: F_node += w_node Rᵀf.
+bool lump_load(const ModalBody& b, const BodyModel& m, const Pose& p, const Vec3& x, const Vec3& f,
+               std::vector<double>& io_nodal)
+{
+    const Vec3 local = inv_rotate(p.orientation, x - p.position) + m.mass.center_of_mass;
+    const Vec3 fl = inv_rotate(p.orientation, f);
+    if (!is_finite(local) || !is_finite(fl))
+        return false;
+    const LatticeWeights lw = modal_weights(*b.basis, local);
+    for (int j = 0; j < lw.count; ++j) {
+        double* out = &io_nodal[static_cast<size_t>(lw.nodes[j]) * 3];
+        out[0] += lw.weights[j] * fl.x;
+        out[1] += lw.weights[j] * fl.y;
+        out[2] += lw.weights[j] * fl.z;
+    }
+    return lw.count > 0;
 }
 
 bool all_finite(const std::vector<double>& v)
@@ -105,6 +136,13 @@ void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasi
     b.host_force.assign(r, 0.0);
     b.load.assign(r, 0.0);
     b.nodal_load.assign(basis->node_positions.size() * 3, 0.0);
+    b.host_nodal_load.assign(b.nodal_load.size(), 0.0);
+    b.last_nodal_load.assign(b.nodal_load.size(), 0.0);
+    b.last_load.assign(r, 0.0);
+    b.q_plastic.assign(r, 0.0);
+    b.plastic.yield_stress = def.modal.yield_stress;
+    b.plastic.hardening = def.modal.hardening;
+    b.plastic.max_plastic_strain = def.modal.max_plastic_strain;
     b.surface = surface_for(w, m.collider, basis);
     b.basis = std::move(basis);
     // Its own collider and samples: the deformed surface belongs to this body alone. The rest shape's
@@ -124,26 +162,19 @@ void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, cons
     ModalBody* b = reg.find<ModalBody>(e);
     if (b == nullptr)
         return;
-    const Pose& p = reg.get<Pose>(e);
-    const Vec3 local =
-        inv_rotate(p.orientation, world_point - p.position) + reg.get<BodyModel>(e).mass.center_of_mass;
-    const Vec3 fl = inv_rotate(p.orientation, world_force);
-    if (!is_finite(local) || !is_finite(fl))
-        return;
-    const LatticeWeights lw = modal_weights(*b->basis, local);
-    for (int j = 0; j < lw.count; ++j) {
-        double* f = &b->nodal_load[static_cast<size_t>(lw.nodes[j]) * 3];
-        f[0] += lw.weights[j] * fl.x;
-        f[1] += lw.weights[j] * fl.y;
-        f[2] += lw.weights[j] * fl.z;
-    }
-    b->has_nodal_load = true;
+    if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->nodal_load))
+        b->has_nodal_load = true;
 }
 
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
 {
-    if (ModalBody* b = reg.find<ModalBody>(e))
+    if (ModalBody* b = reg.find<ModalBody>(e)) {
         add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->host_force);
+        // Also lumped, for the accuracy report's F (the projection above keeps the exact point's field).
+        if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
+                      b->host_nodal_load))
+            b->has_host_nodal_load = true;
+    }
 }
 
 double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, const Vec3& d, double h)
@@ -192,6 +223,10 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
                 b.exact_steps[k] = modal::exact_mode_step(b.omega[k], b.damping_ratio, h);
             b.step_h = h;
         }
+        // The last substep's nodal loads stay for the accuracy report: swap instead of clearing.
+        if (b.last_has_load)
+            std::fill(b.last_nodal_load.begin(), b.last_nodal_load.end(), 0.0);
+        b.last_has_load = b.has_nodal_load || b.has_host_nodal_load;
         if (b.has_nodal_load) {
             // Q = Φᵀ f over the nodes that carry load.
             const double* phi = b.basis->mode_shapes.data();
@@ -202,27 +237,41 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
                 for (size_t k = 0; k < r; ++k)
                     b.load[k] += phi[k] * f;
             }
-            std::fill(b.nodal_load.begin(), b.nodal_load.end(), 0.0);
+            std::swap(b.nodal_load, b.last_nodal_load); // last_nodal_load was zero, so nodal_load is now
             b.has_nodal_load = false;
         }
+        if (b.has_host_nodal_load)
+            for (size_t i = 0; i < b.last_nodal_load.size(); ++i)
+                b.last_nodal_load[i] += b.host_nodal_load[i];
         bool switched = false;
         for (size_t k = 0; k < r; ++k) {
             const double force = b.load[k] + b.host_force[k];
+            b.last_load[k] = force;
+            // The modes spring back to the (plastically moved) rest shape: step the elastic part q − q_p.
+            // For an elastic body q_p = 0 and this is q itself, bit for bit.
+            double elastic = b.q[k] - b.q_plastic[k];
             if (b.integrator == ModalIntegrator::CentralDifference) {
                 if (b.omega[k] * h < modal::k_central_difference_limit) {
-                    modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, b.q[k], b.q_dot[k]);
+                    modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic,
+                                                   b.q_dot[k]);
+                    b.q[k] = elastic + b.q_plastic[k];
                     continue;
                 }
                 switched = true;
             }
-            modal::apply_mode_step(b.exact_steps[k], force, b.q[k], b.q_dot[k]);
+            modal::apply_mode_step(b.exact_steps[k], force, elastic, b.q_dot[k]);
+            b.q[k] = elastic + b.q_plastic[k];
         }
         if (switched)
             ++io_warnings.modal_integrator_switches;
-        if (!all_finite(b.q) || !all_finite(b.q_dot)) {
+        if (b.plastic.plastic())
+            modal::relieve_plastic(*b.surface->stress, b.plastic, b.basis->young, b.q, b.q_plastic,
+                                   b.plastic_strain);
+        if (!all_finite(b.q) || !all_finite(b.q_dot) || !all_finite(b.q_plastic)) {
             // A fault stays in this body's deformation: back to the rest shape.
             std::fill(b.q.begin(), b.q.end(), 0.0);
             std::fill(b.q_dot.begin(), b.q_dot.end(), 0.0);
+            std::fill(b.q_plastic.begin(), b.q_plastic.end(), 0.0);
             ++io_warnings.modal_non_finite;
             if (ctx.faults != nullptr)
                 ctx.faults->record(FaultKind::ModalNonFinite, e, Stage::ModalUpdate);
@@ -277,8 +326,12 @@ void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs)
 
 void clear_modal_forces(Registry& reg)
 {
-    for (ModalBody& b : reg.store<ModalBody>().values())
+    for (ModalBody& b : reg.store<ModalBody>().values()) {
         std::fill(b.host_force.begin(), b.host_force.end(), 0.0);
+        if (b.has_host_nodal_load)
+            std::fill(b.host_nodal_load.begin(), b.host_nodal_load.end(), 0.0);
+        b.has_host_nodal_load = false;
+    }
 }
 
 } // namespace supermodal

@@ -288,13 +288,16 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
     size_t type = 0;
     if (const Json* type_value = r.member(*dynamics, "type"))
         r.read_choice(*type_value, pointer_join(dynamics_where, "type"), k_dynamics_types, type);
-    // Young's modulus, Poisson's ratio and the damping ratio come from the material; the body's own
-    // "damping_ratio" wins over the material's.
+    // Young's modulus, Poisson's ratio, plasticity and the damping ratio come from the material; the
+    // body's own "damping_ratio" wins over the material's.
     const MaterialDef material = material_of(scene, materials, out_body);
     ModalBodyDef& modal = out_body.def.modal;
     modal.young = material.young;
     modal.poisson = material.poisson;
     modal.damping_ratio = material.damping_ratio;
+    modal.yield_stress = material.yield_stress;
+    modal.hardening = material.hardening;
+    modal.max_plastic_strain = material.max_plastic_strain;
     r.field_int(*dynamics, dynamics_where, "modes", closed(1.0, k_max_modes), modal.mode_count);
     if (const Json* lattice = r.member(*dynamics, "lattice")) {
         const std::string lattice_where = pointer_join(dynamics_where, "lattice");

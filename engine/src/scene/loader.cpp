@@ -39,8 +39,9 @@ const std::vector<std::string_view> k_contact_keys = {"path", "sample_spacing", 
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
-const std::vector<std::string_view> k_material_keys = {
-    "density", "young", "poisson", "friction", "restitution", "damping_ratio", "yield_stress"};
+const std::vector<std::string_view> k_material_keys = {"density",      "young",       "poisson",
+                                                       "friction",     "restitution", "damping_ratio",
+                                                       "yield_stress", "hardening",   "max_plastic_strain"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
 // Same bound as validate(const WorldDef&) on thread_count.
@@ -101,6 +102,8 @@ void read_material(Reader& r, const Json& value, const std::string& where, Mater
     r.field_number(value, where, "restitution", scene_io::closed(0.0, 1.0), out_material.restitution);
     r.field_number(value, where, "damping_ratio", at_least(0.0), out_material.damping_ratio);
     r.field_number(value, where, "yield_stress", above(0.0), out_material.yield_stress);
+    r.field_number(value, where, "hardening", at_least(0.0), out_material.hardening);
+    r.field_number(value, where, "max_plastic_strain", above(0.0), out_material.max_plastic_strain);
 }
 
 void read_materials(Reader& r, const Json& root, Scene& out_scene)
@@ -164,7 +167,8 @@ bool same_material(const MaterialDef& a, const MaterialDef& b)
 {
     return a.density == b.density && a.young == b.young && a.poisson == b.poisson &&
            a.friction == b.friction && a.restitution == b.restitution && a.damping_ratio == b.damping_ratio &&
-           a.yield_stress == b.yield_stress;
+           a.yield_stress == b.yield_stress && a.hardening == b.hardening &&
+           a.max_plastic_strain == b.max_plastic_strain;
 }
 
 // Appends an included scene: names get the prefix, root bodies and world anchors the transform.

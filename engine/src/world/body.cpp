@@ -111,6 +111,13 @@ Status validate(const BodyDef& def)
             return Error{"", "modal", "modal dynamics need a dynamic body"};
         if (!(def.modal.damping_ratio >= 0.0) || !std::isfinite(def.modal.damping_ratio))
             return Error{"", "modal/damping_ratio", "expected a finite damping ratio >= 0"};
+        if (!(def.modal.yield_stress > 0.0)) // NaN fails too; +∞ means elastic
+            return Error{"", "modal/yield_stress", "expected a yield stress > 0 Pa (infinity: elastic)"};
+        if (!(def.modal.hardening >= 0.0) || !std::isfinite(def.modal.hardening))
+            return Error{"", "modal/hardening", "expected a finite hardening modulus >= 0 Pa"};
+        if (!(def.modal.max_plastic_strain > 0.0))
+            return Error{"", "modal/max_plastic_strain",
+                         "expected a plastic strain limit > 0 (infinity: none)"};
         if (Status s = validate(modal_basis_def(def)); !s)
             return Error{"", "modal" + s.error().where, s.error().what};
     }

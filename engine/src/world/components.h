@@ -5,6 +5,7 @@
 
 #include "contact/collider.h"
 #include "modal/integrator.h"
+#include "modal/plasticity.h"
 #include "supermodal/body.h"
 #include "supermodal/math.h"
 #include "supermodal/modal.h"
@@ -64,12 +65,20 @@ struct ForceAccumulator {
     return world_from_body * model.principal;
 }
 
+namespace modal
+{
+struct AccuracyCache;
+}
+
 /// Model: how a modal basis moves a collider's rest samples, shared by identical modal bodies.
 struct ModalSurface {
     std::shared_ptr<const Collider> rest;    ///< Rest shape; its samples are in the body frame.
     std::shared_ptr<const ModalBasis> basis; ///< The basis the displacements come from.
     std::vector<double> sample_modes;        ///< Per rest sample, (3 × r) body-frame displacement per
                                              ///< unit amplitude, entry (sample·3 + axis)·r + k [1/√kg].
+    std::shared_ptr<const modal::StressModel> stress; ///< Stress points and stress per unit amplitude.
+    std::shared_ptr<modal::AccuracyCache> accuracy;   ///< Full lattice for the accuracy report, built on
+                                                      ///< first use.
 };
 
 /// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
@@ -86,11 +95,21 @@ struct ModalBody {
                                     ///< central difference (leapfrog).
     std::vector<double> host_force; ///< (r) generalized host forces for the next step [N/√kg]; cleared
                                     ///< after each step, like ForceAccumulator.
+    std::vector<double> q_plastic;  ///< (r) plastic offsets q_p [√kg·m]: the rest shape has moved by
+                                    ///< Φ q_p; the elastic part is q − q_p. Zero for elastic bodies.
+    double plastic_strain = 0.0;    ///< Accumulated equivalent plastic strain [-] (hardening, limit).
+    modal::PlasticParams plastic;   ///< Model: yield, hardening, limit.
     // Derived and scratch.
     std::vector<double> load;       ///< (r) contact generalized forces of this substep [N/√kg].
     std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the
                                     ///< nodes [N], body frame; projected on the modes once per substep.
     bool has_nodal_load = false;
+    std::vector<double> host_nodal_load; ///< (3 × nodes) host point loads of this step lumped likewise [N].
+    bool has_host_nodal_load = false;
+    // Diagnostics of the last substep (accuracy report); cleared by restore.
+    std::vector<double> last_nodal_load; ///< (3 × nodes) the nodal loads F it applied [N], body frame.
+    std::vector<double> last_load;       ///< (r) the generalized forces Q it applied [N/√kg].
+    bool last_has_load = false;
     std::shared_ptr<Collider> collider;       ///< This body's collider (BodyModel::collider points to it),
                                               ///< its samples deformed by UpdateSurfaces.
     std::shared_ptr<SampleSet> samples;       ///< The deformed samples it holds.

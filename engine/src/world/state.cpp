@@ -5,6 +5,7 @@
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace supermodal
@@ -124,6 +125,11 @@ uint64_t World::state_hash() const
                 fnv.f64(b.q[k]);
                 fnv.f64(b.q_dot[k]);
             }
+            if (b.plastic.plastic()) { // elastic bodies keep the hash they had before plasticity existed
+                for (const double v : b.q_plastic)
+                    fnv.f64(v);
+                fnv.f64(b.plastic_strain);
+            }
         }
     });
     for (const PairAnchor& a : w.contact.anchors) {
@@ -170,6 +176,8 @@ Snapshot World::snapshot() const
             s.modal_values.insert(s.modal_values.end(), b.q.begin(), b.q.end());
             s.modal_values.insert(s.modal_values.end(), b.q_dot.begin(), b.q_dot.end());
             s.modal_values.insert(s.modal_values.end(), b.host_force.begin(), b.host_force.end());
+            s.modal_values.insert(s.modal_values.end(), b.q_plastic.begin(), b.q_plastic.end());
+            s.modal_values.push_back(b.plastic_strain);
         }
     });
     for (const PairAnchor& a : w.contact.anchors) {
@@ -226,7 +234,7 @@ Status World::restore(const Snapshot& s)
     size_t modal_count = 0;
     for (Entity e : live)
         if (w.reg.has<ModalBody>(e))
-            modal_count += 3 * w.reg.get<ModalBody>(e).q.size();
+            modal_count += 4 * w.reg.get<ModalBody>(e).q.size() + 1;
     if (modal_count != s.modal_values.size())
         return Error{"", "snapshot", "corrupt snapshot: modal value count does not match its bodies"};
     for (size_t i = 0; i < live.size(); ++i)
@@ -240,7 +248,13 @@ Status World::restore(const Snapshot& s)
         b->q.assign(modal, modal + r);
         b->q_dot.assign(modal + r, modal + 2 * r);
         b->host_force.assign(modal + 2 * r, modal + 3 * r);
-        modal += 3 * r;
+        b->q_plastic.assign(modal + 3 * r, modal + 4 * r);
+        b->plastic_strain = modal[4 * r];
+        modal += 4 * r + 1;
+        // The last substep's loads (accuracy report) are not state: the report starts afresh.
+        std::fill(b->last_nodal_load.begin(), b->last_nodal_load.end(), 0.0);
+        std::fill(b->last_load.begin(), b->last_load.end(), 0.0);
+        b->last_has_load = false;
         update_modal_surface(*b);
     }
     w.contact.anchors.clear();

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// How far a body's reduced (modal) solution is from the full lattice it was cut from: the residual of
+// the full equations of motion on the reduced solution and the static energy the dropped modes would
+// carry (docs/modal.md, "Accuracy report").
+#pragma once
+
+#include "modal/assembly.h"
+#include "supermodal/modal.h"
+
+#include <Eigen/SparseCholesky>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+
+namespace supermodal::modal
+{
+
+/// The full lattice of a basis with what the report needs factored once.
+struct AccuracyModel {
+    SparseMatrix stiffness, mass; ///< K [N/m], M [kg] (3n × 3n).
+    Eigen::MatrixXd rigid;        ///< (3n × 6) rigid motions, M-orthonormal: Ψᵀ M Ψ = I.
+    Eigen::SimplicialLDLT<SparseMatrix> mass_solver;   ///< M⁻¹ for the norms.
+    Eigen::SimplicialLDLT<SparseMatrix> pinned_solver; ///< K with six pinned dofs (static solves).
+    std::array<int, 6> pinned{};                       ///< The pinned dofs.
+};
+
+/// Assembles the lattice of `def` (the def the basis was built from) and factors M and the pinned K.
+/// Errors: the lattice does not match the basis, or a factorisation fails.
+[[nodiscard]] Result<std::unique_ptr<AccuracyModel>> build_accuracy_model(const ModalBasisDef& def,
+                                                                          const ModalBasis& basis);
+
+/// A basis's AccuracyModel, built on first use and shared (ModalSurface::accuracy). Thread-safe.
+struct AccuracyCache {
+    ModalBasisDef def; ///< The def its basis was built from.
+    /// The model, or null when it cannot be built (why: in `error`).
+    const AccuracyModel* get(const ModalBasis& basis);
+    std::string error;
+
+  private:
+    std::mutex m_mutex;
+    bool m_tried = false;
+    std::unique_ptr<AccuracyModel> m_model;
+};
+
+/// One body's reduced state and the loads of its last substep, body frame.
+struct AccuracyInput {
+    std::span<const double> nodal_force;         ///< (3n) F [N], the loads lumped on the lattice nodes.
+    std::span<const double> modal_force;         ///< (r) Q [N/√kg] the modes were driven with.
+    std::span<const double> q, q_dot, q_plastic; ///< (r) each.
+    std::span<const double> omega;               ///< (r) [rad/s].
+};
+
+/// The residual R = M ü + C u̇ + K u − F of the full lattice on u = Φ(q − q_p), u̇ = Φ q̇,
+/// ü = Φ q̈ + Ψ Ψᵀ F (q̈ from the modal equation, plus the lattice's rigid acceleration, which the rigid
+/// body carries; C = M Φ 2ζΩ Φᵀ M the modal damping), and the truncated static energy.
+[[nodiscard]] ModalAccuracy evaluate_accuracy(const AccuracyModel& model, const ModalBasis& basis,
+                                              const AccuracyInput& in);
+
+} // namespace supermodal::modal
