@@ -162,6 +162,26 @@ int run_command(const RunOptions& opt)
         return k_exit_bad_input;
     }
     const long long steps = static_cast<long long>(wanted);
+    std::unique_ptr<FrameCapture> capture;
+    if (opt.capture.enabled() || opt.capture.every_given || opt.capture.size_given) {
+        Result<std::unique_ptr<FrameCapture>> opened = FrameCapture::open(opt.capture, *scene, world);
+        if (!opened) {
+            print_error(opened.error().message());
+            // A machine without EGL is not the user's input's fault.
+            return opened.error().where == "render" ? k_exit_internal : k_exit_bad_input;
+        }
+        capture = std::move(*opened);
+    }
+    const auto capture_frame = [&](long long step) {
+        if (!capture)
+            return true;
+        Status s = capture->maybe_capture(world, step);
+        if (!s)
+            print_error("frame capture: " + s.error().message());
+        return static_cast<bool>(s);
+    };
+    if (!capture_frame(0))
+        return k_exit_internal;
 
     std::ostringstream csv;
     if (!opt.csv_out.empty()) {
@@ -186,7 +206,14 @@ int run_command(const RunOptions& opt)
             trace_rows(world, csv);
         if (i % 64 == 0 || i == steps)
             progress.update(i);
+        if (!capture_frame(i))
+            return k_exit_internal;
     }
+    if (capture)
+        if (Status s = capture->finish(); !s) {
+            print_error(s.error().message());
+            return k_exit_internal;
+        }
 
     const Energies e1 = total_energy(world);
     std::vector<double> sorted = step_ms;
@@ -200,35 +227,36 @@ int run_command(const RunOptions& opt)
     nlohmann::json bodies = nlohmann::json::array();
     for (Entity b : world_bodies(world))
         bodies.push_back(body_summary(world, b));
-    const nlohmann::json summary = {
-        {"scene", opt.scene},
-        {"steps", steps},
-        {"time", world.time()},
-        {"dt", dt},
-        {"substeps", world.settings().substep_count},
-        {"threads", world.settings().thread_count},
-        {"body_count", bodies.size()},
-        {"state_hash", hex(world.state_hash())},
-        {"ms_per_step",
-         {{"mean", sum / static_cast<double>(steps)},
-          {"median", sorted[sorted.size() / 2]},
-          {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
-        {"stage_ms_mean", stages},
-        {"contact", tally.summary(world)},
-        {"energy",
-         {{"initial_kinetic", e0.kinetic},
-          {"initial_potential", e0.potential},
-          {"kinetic", e1.kinetic},
-          {"potential", e1.potential},
-          {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
-        {"warnings",
-         {{"non_finite_bodies", world.warnings().non_finite_bodies},
-          {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks},
-          {"modal_integrator_switches", world.warnings().modal_integrator_switches},
-          {"modal_non_finite", world.warnings().modal_non_finite}}},
-        {"constraints", constraint_summary(world, peak_constraint_error)},
-        {"bodies", bodies}};
+    nlohmann::json summary = {{"scene", opt.scene},
+                              {"steps", steps},
+                              {"time", world.time()},
+                              {"dt", dt},
+                              {"substeps", world.settings().substep_count},
+                              {"threads", world.settings().thread_count},
+                              {"body_count", bodies.size()},
+                              {"state_hash", hex(world.state_hash())},
+                              {"ms_per_step",
+                               {{"mean", sum / static_cast<double>(steps)},
+                                {"median", sorted[sorted.size() / 2]},
+                                {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
+                              {"stage_ms_mean", stages},
+                              {"contact", tally.summary(world)},
+                              {"energy",
+                               {{"initial_kinetic", e0.kinetic},
+                                {"initial_potential", e0.potential},
+                                {"kinetic", e1.kinetic},
+                                {"potential", e1.potential},
+                                {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
+                              {"warnings",
+                               {{"non_finite_bodies", world.warnings().non_finite_bodies},
+                                {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks},
+                                {"modal_integrator_switches", world.warnings().modal_integrator_switches},
+                                {"modal_non_finite", world.warnings().modal_non_finite}}},
+                              {"constraints", constraint_summary(world, peak_constraint_error)},
+                              {"bodies", bodies}};
 
+    if (capture)
+        summary["capture"] = capture->summary();
     const std::string text = summary.dump(2) + "\n";
     if (!opt.csv_out.empty())
         if (std::string err = write_file_atomically(opt.csv_out, csv.str()); !err.empty()) {

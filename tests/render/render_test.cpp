@@ -178,7 +178,6 @@ TEST(Renderer, DrawsModalDeformation)
     ASSERT_TRUE(sm::set_body_modal_state(w, board, q, v));
     ASSERT_TRUE(r.render(w, cam, bent));
     EXPECT_GT(differing(rest, bent, 16), 0.005);
-    EXPECT_TRUE(sm::write_png("/tmp/modal_bent.png", bent));
     sm::RenderDef def = small_def();
     def.deformation_scale = 0.0;
     sm::Renderer flat = make_renderer(def);

@@ -95,7 +95,8 @@ struct Renderer::Impl {
     std::map<Entity, BodyEntry> bodies;
     std::map<Entity, Vec3> colors;
     const World* last_world = nullptr;
-    GLuint empty_vao = 0, grid_vao = 0, grid_vbo = 0;
+    GLuint empty_vao = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
+    std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
 
     ~Impl()
     {
@@ -104,6 +105,8 @@ struct Renderer::Impl {
             glDeleteVertexArrays(1, &empty_vao);
             glDeleteVertexArrays(1, &grid_vao);
             glDeleteBuffers(1, &grid_vbo);
+            glDeleteVertexArrays(1, &shadow_vao);
+            glDeleteBuffers(1, &shadow_vbo);
             render::delete_programs(programs);
         }
     }
@@ -124,6 +127,15 @@ struct Renderer::Impl {
         glBufferData(GL_ARRAY_BUFFER, 4 * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
         glEnableVertexAttribArray(0);
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+        glGenVertexArrays(1, &shadow_vao);
+        glGenBuffers(1, &shadow_vbo);
+        glBindVertexArray(shadow_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, shadow_vbo);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                              reinterpret_cast<const void*>(3 * sizeof(float)));
         glBindVertexArray(0);
         if (std::string e = render::gl_errors(); !e.empty())
             return Error{"", "render", "setting up: " + e};
@@ -160,6 +172,8 @@ struct Renderer::Impl {
 
     void draw_grid(const World& world, const render::View& view, const Vec3& normal_in, double offset,
                    PoseSource poses);
+    void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
+                      const Vec3& a0, const Vec3& a1, PoseSource poses);
     Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses);
 };
 
@@ -182,28 +196,6 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
         for (int k = 0; k < 3; ++k)
             quad[i * 3 + k] = static_cast<float>(c[k]);
     }
-    // Blob shadows: each body's centre dropped onto the plane, softer and fainter the higher it is.
-    std::vector<float> blobs, strength;
-    for (Entity b : world_bodies(world)) {
-        const ShapeDef& shape = body_shape(world, b);
-        if (shape.type == ShapeType::Plane || static_cast<int>(strength.size()) == render::k_max_blobs)
-            continue;
-        const Vec3 p = poses == PoseSource::Interpolated ? body_interpolated_position(world, b)
-                                                         : body_position(world, b);
-        const Aabb box =
-            world_aabb(shape, p,
-                       poses == PoseSource::Interpolated ? body_interpolated_orientation(world, b)
-                                                         : body_orientation(world, b));
-        const Vec3 c = 0.5 * (box.min + box.max);
-        const Vec3 half_size = 0.5 * (box.max - box.min);
-        const double radius = std::sqrt(half_size.x * half_size.x + half_size.z * half_size.z + 1e-12);
-        const double height = std::max(dot(c, n) - offset, 0.0);
-        const Vec3 drop = c - (dot(c, n) - offset) * n;
-        blobs.insert(blobs.end(), {static_cast<float>(drop.x), static_cast<float>(drop.y),
-                                   static_cast<float>(drop.z), static_cast<float>(radius + 0.5 * height)});
-        strength.push_back(
-            static_cast<float>(0.5 * std::clamp(1.0 - height / (4.0 * radius + 0.2), 0.0, 1.0)));
-    }
     // Minor lines at a power of ten near a tenth of the view distance; major lines every ten.
     const double spacing = std::pow(10.0, std::round(std::log10(view.distance))) / 10.0;
     const float axes[9] = {static_cast<float>(a0.x), static_cast<float>(a0.y), static_cast<float>(a0.z),
@@ -218,12 +210,6 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     glUniform2f(programs.grid_fade, static_cast<float>(2.5 * view.distance),
                 static_cast<float>(9.0 * view.distance));
     set_vec3(programs.grid_fog, def.sky_bottom);
-    const auto count = static_cast<GLsizei>(strength.size());
-    glUniform1i(programs.grid_blob_count, count);
-    if (count > 0) {
-        glUniform4fv(programs.grid_blobs, count, blobs.data());
-        glUniform1fv(programs.grid_blob_strength, count, strength.data());
-    }
     glBindVertexArray(grid_vao);
     glBindBuffer(GL_ARRAY_BUFFER, grid_vbo);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
@@ -231,7 +217,60 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glPolygonOffset(0.5f, 0.5f); // shadows: just in front of the grid, still behind resting bodies
+    draw_shadows(world, view, n, offset, a0, a1, poses);
     glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void Renderer::Impl::draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
+                                  const Vec3& a0, const Vec3& a1, PoseSource poses)
+{
+    // Each body's box centre dropped onto the plane; wider, softer and fainter the higher it is.
+    shadow_vertices.clear();
+    const double corners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
+    for (Entity b : world_bodies(world)) {
+        const ShapeDef& shape = body_shape(world, b);
+        if (shape.type == ShapeType::Plane)
+            continue;
+        const bool interpolated = poses == PoseSource::Interpolated;
+        const Aabb box =
+            world_aabb(shape, interpolated ? body_interpolated_position(world, b) : body_position(world, b),
+                       interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
+        const Vec3 c = 0.5 * (box.min + box.max);
+        const Vec3 h = 0.5 * (box.max - box.min);
+        // Extent across the plane: the box's half-size with the part along the normal removed.
+        const Vec3 across = h - Vec3{std::abs(n.x) * h.x, std::abs(n.y) * h.y, std::abs(n.z) * h.z};
+        const double radius = length(across) + 1e-6;
+        const double height = dot(c, n) - offset;
+        if (height < 0.0 || length(c - view.target) > 20.0 * view.distance)
+            continue; // under the plane, or too far to see
+        const double strength = 0.5 * std::clamp(1.0 - height / (4.0 * radius + 0.2), 0.0, 1.0);
+        if (strength <= 0.0)
+            continue;
+        const double r = 1.2 * radius + 0.5 * height;
+        const Vec3 drop = c - height * n;
+        for (const auto& k : corners) {
+            const Vec3 p = drop + r * k[0] * a0 + r * k[1] * a1;
+            shadow_vertices.insert(shadow_vertices.end(),
+                                   {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
+                                    static_cast<float>(k[0]), static_cast<float>(k[1]),
+                                    static_cast<float>(strength)});
+        }
+    }
+    if (shadow_vertices.empty())
+        return;
+    glUseProgram(programs.shadow);
+    glUniformMatrix4fv(programs.shadow_view_proj, 1, GL_FALSE, view.view_proj.data());
+    glBindVertexArray(shadow_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, shadow_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shadow_vertices.size() * sizeof(float)),
+                 shadow_vertices.data(), GL_STREAM_DRAW);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_DST_COLOR, GL_ZERO); // multiply: darken what the grid drew
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(shadow_vertices.size() / 6));
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
 }
 
 Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses)

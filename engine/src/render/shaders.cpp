@@ -59,7 +59,7 @@ void main() {
 })";
 
 // Ground grid on a plane: u_axes = the plane's two in-plane unit axes (columns 0, 1) and its normal
-// (column 2); minor lines every u_spacing, major every 10; blob shadows under bodies; fades into fog.
+// (column 2); minor lines every u_spacing, major every 10; fades into fog far away.
 const char* k_grid_vs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_view_proj;
@@ -72,9 +72,6 @@ uniform vec3 u_eye, u_origin, u_fog;
 uniform mat3 u_axes;
 uniform float u_spacing;
 uniform vec2 u_fade;
-uniform vec4 u_blobs[64];
-uniform float u_blob_strength[64];
-uniform int u_blob_count;
 out vec4 o_color;
 float lines(vec2 uv, float spacing) {
     vec2 g = uv / spacing;
@@ -88,17 +85,27 @@ void main() {
     vec3 c = vec3(0.80, 0.80, 0.78);
     c = mix(c, vec3(0.62, 0.62, 0.60), lines(uv, u_spacing) * 0.6);
     c = mix(c, vec3(0.45, 0.45, 0.44), lines(uv, u_spacing * 10.0) * 0.8);
-    float shade = 1.0;
-    for (int i = 0; i < u_blob_count; ++i) {
-        // xyz: body centre dropped onto the plane, w: its blur radius; strength fades with height.
-        vec3 d3 = v_world - u_blobs[i].xyz;
-        float d = length(d3 - dot(d3, u_axes[2]) * u_axes[2]);
-        shade *= 1.0 - u_blob_strength[i] * (1.0 - smoothstep(0.2 * u_blobs[i].w, u_blobs[i].w, d));
-    }
-    c *= shade;
     float dist = length(v_world - u_eye);
     float fade = smoothstep(u_fade.x, u_fade.y, dist);
     o_color = vec4(mix(c, u_fog, fade), 1.0);
+})";
+
+// Blob shadows: one quad per body on the plane, multiplied into the grid (blend DST_COLOR, ZERO);
+// a_shadow = (u, v) in [−1, 1] across the quad and the darkening at its centre. One quad per body
+// costs its own area instead of every grid pixel looping over every body.
+const char* k_shadow_vs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_shadow;
+uniform mat4 u_view_proj;
+out vec3 v_shadow;
+void main() { v_shadow = a_shadow; gl_Position = u_view_proj * vec4(a_position, 1.0); })";
+const char* k_shadow_fs = R"(#version 300 es
+precision highp float;
+in vec3 v_shadow;
+out vec4 o_color;
+void main() {
+    float falloff = 1.0 - smoothstep(0.2, 1.0, length(v_shadow.xy));
+    o_color = vec4(vec3(1.0 - v_shadow.z * falloff), 1.0);
 })";
 
 Status compile(GLenum type, const char* source, GLuint& out)
@@ -150,6 +157,9 @@ Status compile_programs(Programs& p)
         return s;
     if (Status s = link(k_grid_vs, k_grid_fs, p.grid); !s)
         return s;
+    if (Status s = link(k_shadow_vs, k_shadow_fs, p.shadow); !s)
+        return s;
+    p.shadow_view_proj = glGetUniformLocation(p.shadow, "u_view_proj");
     p.sky_top = glGetUniformLocation(p.sky, "u_top");
     p.sky_bottom = glGetUniformLocation(p.sky, "u_bottom");
     p.model = glGetUniformLocation(p.body, "u_model");
@@ -166,15 +176,12 @@ Status compile_programs(Programs& p)
     p.grid_spacing = glGetUniformLocation(p.grid, "u_spacing");
     p.grid_fade = glGetUniformLocation(p.grid, "u_fade");
     p.grid_fog = glGetUniformLocation(p.grid, "u_fog");
-    p.grid_blobs = glGetUniformLocation(p.grid, "u_blobs");
-    p.grid_blob_strength = glGetUniformLocation(p.grid, "u_blob_strength");
-    p.grid_blob_count = glGetUniformLocation(p.grid, "u_blob_count");
     return {};
 }
 
 void delete_programs(Programs& p)
 {
-    for (GLuint prog : {p.sky, p.body, p.grid})
+    for (GLuint prog : {p.sky, p.body, p.grid, p.shadow})
         if (prog != 0)
             glDeleteProgram(prog);
     p = Programs{};
