@@ -12,6 +12,8 @@ packages=(
   libccd-dev           # contact: MPR penetration depth of convex pairs
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
+  libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image_write (PNG)
+  libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri  # at run time: Mesa's EGL (surfaceless) and llvmpipe
 )
 
 missing=()

@@ -105,13 +105,15 @@ TEST(Renderer, ReportsTheDeviceAndDrawsTheSky)
     EXPECT_NEAR(img.rgba[bottom + 1], 255 * def.sky_bottom.y, 3.0);
 }
 
-// Every corner of every body's box lies inside the view cone of the framed camera.
+// Every corner of every body's box lies inside the framed camera's view rectangle, and the framing is
+// tight: some corner is within the 10% margin of an edge.
 TEST(Framing, FitsEveryBody)
 {
     sm::World w = load("samples/gallery.json");
+    const double aspect = 16.0 / 9.0;
+    const double tan_v = std::tan(20.0 * std::numbers::pi / 180), tan_h = tan_v * aspect;
     for (double yaw : {0.0, 45.0, 200.0})
         for (double pitch : {-30.0, 10.0, 80.0}) {
-            const double aspect = 16.0 / 9.0;
             const sm::CameraDef c = sm::frame_bodies(
                 w, sm::CameraDef{.target = std::nullopt, .yaw_deg = yaw, .pitch_deg = pitch, .fov_deg = 40.0},
                 aspect);
@@ -119,8 +121,10 @@ TEST(Framing, FitsEveryBody)
             ASSERT_GT(c.distance, 0.0);
             const double y = yaw * std::numbers::pi / 180, p = pitch * std::numbers::pi / 180;
             const sm::Vec3 back{std::cos(p) * std::sin(y), std::sin(p), std::cos(p) * std::cos(y)};
+            const sm::Vec3 right = sm::normalized(sm::cross(-back, sm::Vec3{0, 1, 0}));
+            const sm::Vec3 up = sm::cross(right, -back);
             const sm::Vec3 eye = *c.target + c.distance * back;
-            const double half_v = 20.0 * std::numbers::pi / 180; // the narrower half-angle (aspect > 1)
+            double fullest = 0.0; // largest fraction of the half-width or half-height used
             for (sm::Entity b : sm::world_bodies(w)) {
                 if (sm::body_shape(w, b).type == sm::ShapeType::Plane)
                     continue;
@@ -129,11 +133,18 @@ TEST(Framing, FitsEveryBody)
                 for (int k = 0; k < 8; ++k) {
                     const sm::Vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
                                           (k & 4) ? box.max.z : box.min.z};
-                    const sm::Vec3 d = sm::normalized(corner - eye);
-                    EXPECT_LT(std::acos(std::clamp(sm::dot(d, -back), -1.0, 1.0)), half_v)
-                        << "yaw " << yaw << " pitch " << pitch;
+                    const sm::Vec3 r = corner - eye;
+                    const double depth = sm::dot(r, -back);
+                    ASSERT_GT(depth, 0.0);
+                    const double used = std::max(std::abs(sm::dot(r, right)) / (depth * tan_h),
+                                                 std::abs(sm::dot(r, up)) / (depth * tan_v));
+                    EXPECT_LE(used, 1.0) << "yaw " << yaw << " pitch " << pitch;
+                    fullest = std::max(fullest, used);
                 }
             }
+            // With the 10% margin on the distance the extreme corner still fills over 80% of the half
+            // frame: the framing is tight, not a loose bounding sphere.
+            EXPECT_GT(fullest, 0.8) << "yaw " << yaw << " pitch " << pitch;
         }
 }
 

@@ -159,15 +159,18 @@ struct Renderer::Impl {
         return e;
     }
 
+    // Drawn last at the far plane with LEQUAL: only pixels nothing else covered are shaded.
     void draw_sky()
     {
-        glDisable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
         glUseProgram(programs.sky);
         set_vec3(programs.sky_top, def.sky_top);
         set_vec3(programs.sky_bottom, def.sky_bottom);
         glBindVertexArray(empty_vao);
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_LESS);
     }
 
     void draw_grid(const World& world, const render::View& view, const Vec3& normal_in, double offset,
@@ -292,7 +295,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     framebuffer.bind();
     glDepthMask(GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    draw_sky();
+    glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
@@ -342,6 +345,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         for (const auto& [normal, offset] : planes)
             draw_grid(world, view, normal, offset, poses);
     }
+    draw_sky();
     glBindVertexArray(0);
     out.width = def.width;
     out.height = def.height;

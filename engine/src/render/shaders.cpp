@@ -36,7 +36,9 @@ void main() {
     v_normal = mat3(u_model) * a_normal;
     gl_Position = u_view_proj * w;
 })";
-// Key + fill directional lights, hemisphere ambient, a little Blinn-Phong; lit in linear space.
+// Key + fill directional lights, hemisphere ambient, a little Blinn-Phong; lit in linear space with
+// gamma 2 (square in, square root out) instead of 2.2: two pow() calls per pixel cost llvmpipe more
+// than the difference shows.
 const char* k_body_fs = R"(#version 300 es
 precision highp float;
 in vec3 v_world, v_normal;
@@ -44,7 +46,7 @@ uniform vec3 u_color, u_eye, u_key_dir, u_fill_dir;
 uniform int u_flat;
 out vec4 o_color;
 void main() {
-    vec3 base = pow(u_color, vec3(2.2));
+    vec3 base = u_color * u_color;
     if (u_flat != 0) { o_color = vec4(u_color, 1.0); return; }
     vec3 n = normalize(v_normal);
     vec3 v = normalize(u_eye - v_world);
@@ -53,9 +55,10 @@ void main() {
     vec3 ambient = mix(vec3(0.30, 0.27, 0.24), vec3(0.55, 0.62, 0.75), 0.5 + 0.5 * n.y);
     vec3 h = normalize(u_key_dir + v);
     float spec = pow(max(dot(n, h), 0.0), 40.0) * 0.18 * step(0.0, dot(n, u_key_dir));
-    float rim = pow(1.0 - max(dot(n, v), 0.0), 3.0) * 0.08;
+    float edge = 1.0 - max(dot(n, v), 0.0);
+    float rim = edge * edge * edge * 0.08;
     vec3 lit = base * (0.45 * ambient + 0.85 * key * vec3(1.0, 0.97, 0.92) + 0.25 * fill) + spec + rim;
-    o_color = vec4(pow(lit, vec3(1.0 / 2.2)), 1.0);
+    o_color = vec4(sqrt(lit), 1.0);
 })";
 
 // Ground grid on a plane: u_axes = the plane's two in-plane unit axes (columns 0, 1) and its normal

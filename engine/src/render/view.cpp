@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace supermodal
 {
@@ -27,8 +28,8 @@ CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspec
     CameraDef out = camera;
     if (out.target && out.distance > 0.0)
         return out;
+    std::vector<Aabb> boxes;
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    bool any = false;
     for (Entity b : world_bodies(world)) {
         const ShapeDef& shape = body_shape(world, b);
         if (shape.type == ShapeType::Plane)
@@ -40,22 +41,32 @@ CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspec
             lo[i] = std::min(lo[i], box.min[i]);
             hi[i] = std::max(hi[i], box.max[i]);
         }
-        any = true;
+        boxes.push_back(box);
     }
-    if (!any) { // nothing to frame: a 2 m view of the origin
+    if (boxes.empty()) { // nothing to frame: a 2 m view of the origin
         lo = {-1, -1, -1};
         hi = {1, 1, 1};
+        boxes.push_back({lo, hi});
     }
-    const Vec3 centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * length(hi - lo), 1e-3);
     if (!out.target)
-        out.target = centre;
+        out.target = 0.5 * (lo + hi);
     if (!(out.distance > 0.0)) {
-        // The bounding sphere of the boxes, seen from around the target, fits the narrower half-angle.
-        const double half_v = 0.5 * std::clamp(camera.fov_deg, 1.0, 150.0) * k_deg;
-        const double half_h = std::atan(std::tan(half_v) * std::clamp(aspect, 0.1, 10.0));
-        const double offset = length(centre - *out.target);
-        out.distance = k_frame_margin * (radius + offset) / std::sin(std::min(half_v, half_h));
+        // Every box corner inside the view's rectangle: a corner at offset r from the target, seen
+        // from distance d, sits at depth d − r·back and needs |r·right| ≤ depth·tan(half_h) and
+        // |r·up| ≤ depth·tan(half_v).
+        const render::OrbitAxes axes = render::orbit_axes(camera);
+        const double tan_v = std::tan(0.5 * std::clamp(camera.fov_deg, 1.0, 150.0) * k_deg);
+        const double tan_h = tan_v * std::clamp(aspect, 0.1, 10.0);
+        double d = 0.0;
+        for (const Aabb& box : boxes)
+            for (int k = 0; k < 8; ++k) {
+                const Vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                  (k & 4) ? box.max.z : box.min.z};
+                const Vec3 r = corner - *out.target;
+                d = std::max(d, dot(r, axes.back) + std::max(std::abs(dot(r, axes.right)) / tan_h,
+                                                             std::abs(dot(r, axes.up)) / tan_v));
+            }
+        out.distance = k_frame_margin * std::max(d, 1e-3);
     }
     return out;
 }
@@ -77,18 +88,27 @@ Mat4 model_matrix(const Vec3& p, const Quat& q)
     return m;
 }
 
+OrbitAxes orbit_axes(const CameraDef& camera)
+{
+    const double yaw = camera.yaw_deg * k_deg, pitch = std::clamp(camera.pitch_deg, -89.0, 89.0) * k_deg;
+    OrbitAxes a;
+    a.back = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
+    a.right = normalized(cross(-a.back, Vec3{0, 1, 0}));
+    a.up = cross(a.right, -a.back);
+    return a;
+}
+
 View make_view(const CameraDef& camera, double aspect, double scene_radius)
 {
     View v;
     v.target = camera.target.value_or(Vec3{});
     v.distance = std::max(camera.distance, 1e-3);
-    const double yaw = camera.yaw_deg * k_deg, pitch = std::clamp(camera.pitch_deg, -89.0, 89.0) * k_deg;
-    const Vec3 back{std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
-    v.eye = v.target + v.distance * back;
+    const OrbitAxes axes = orbit_axes(camera);
+    v.eye = v.target + v.distance * axes.back;
     // Right-handed look-at: f forward, s right, u up.
-    const Vec3 f = -back;
-    const Vec3 s = normalized(cross(f, Vec3{0, 1, 0}));
-    const Vec3 u = cross(s, f);
+    const Vec3 f = -axes.back;
+    const Vec3 s = axes.right;
+    const Vec3 u = axes.up;
     // Near and far from the distance: the grid fades out by 12 distances, so nothing past that shows.
     const double near_plane = std::max(1e-3, 0.02 * v.distance);
     const double far_plane = 14.0 * v.distance + 2.0 * scene_radius;
