@@ -105,6 +105,8 @@ Result<std::unique_ptr<FrameCapture>> FrameCapture::open(const CaptureOptions& o
                    "expected WxH with each in [16, 8192] px (e.g. 1280x720), found \"" + o.size + "\"");
     if (o.every < 1)
         return bad("--every", "expected an integer >= 1");
+    if (o.msaa < 1 || o.msaa > 16)
+        return bad("--msaa", "expected 1 to 16 samples per pixel");
     if (!o.frames_dir.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(o.frames_dir, ec);
@@ -122,6 +124,7 @@ Result<std::unique_ptr<FrameCapture>> FrameCapture::open(const CaptureOptions& o
     RenderDef def = default_render_def();
     def.width = impl->width;
     def.height = impl->height;
+    def.samples = o.msaa;
     Result<Renderer> renderer = Renderer::create(def);
     if (!renderer)
         return Error{"", "render", "cannot render offscreen: " + renderer.error().message()};
@@ -192,6 +195,7 @@ nlohmann::json FrameCapture::summary() const
     return {{"frames", m.frames},
             {"every", m.options.every},
             {"size", {m.width, m.height}},
+            {"msaa", m.options.msaa},
             {"frames_dir", m.options.frames_dir},
             {"video", m.options.video},
             {"device", m.renderer->device_name()},

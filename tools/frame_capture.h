@@ -19,6 +19,7 @@ struct CaptureOptions {
     std::string video;      ///< An .mp4 written through ffmpeg; empty: none.
     int every = 1;          ///< A frame every K steps (and one before the first step).
     std::string size;       ///< "WxH" [px]; empty: 1280x720.
+    int msaa = 4;           ///< Multisample anti-aliasing samples, 1 (off, fastest) to 16.
     bool size_given = false, every_given = false;
 
     [[nodiscard]] bool enabled() const { return !frames_dir.empty() || !video.empty(); }

@@ -39,6 +39,10 @@ int main(int argc, char** argv)
                       ->check(CLI::PositiveNumber);
     auto* size =
         run_cmd->add_option("--size", run.capture.size, "Frame size WxH in pixels (default 1280x720)");
+    run_cmd
+        ->add_option("--msaa", run.capture.msaa,
+                     "Anti-aliasing samples per pixel, 1 (fastest) to 16 (default 4)")
+        ->check(CLI::Range(1, 16));
     run_cmd->add_option("--video", run.capture.video, "Also encode the frames into this .mp4 (needs ffmpeg)");
     run_cmd->add_flag("--quiet", run.quiet, "No progress bar (it is shown only on a terminal anyway)");
 
