@@ -227,37 +227,40 @@ int run_command(const RunOptions& opt)
     nlohmann::json bodies = nlohmann::json::array();
     for (Entity b : world_bodies(world))
         bodies.push_back(body_summary(world, b));
-    nlohmann::json summary = {{"scene", opt.scene},
-                              {"steps", steps},
-                              {"time", world.time()},
-                              {"dt", dt},
-                              {"substeps", world.settings().substep_count},
-                              {"threads", world.settings().thread_count},
-                              {"body_count", bodies.size()},
-                              {"state_hash", hex(world.state_hash())},
-                              {"ms_per_step",
-                               {{"mean", sum / static_cast<double>(steps)},
-                                {"median", sorted[sorted.size() / 2]},
-                                {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
-                              {"stage_ms_mean", stages},
-                              {"contact", tally.summary(world)},
-                              {"energy",
-                               {{"initial_kinetic", e0.kinetic},
-                                {"initial_potential", e0.potential},
-                                {"kinetic", e1.kinetic},
-                                {"potential", e1.potential},
-                                {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
-                              {"warnings",
-                               {{"non_finite_bodies", world.warnings().non_finite_bodies},
-                                {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks},
-                                {"modal_integrator_switches", world.warnings().modal_integrator_switches},
-                                {"modal_non_finite", world.warnings().modal_non_finite}}},
-                              {"constraints", constraint_summary(world, peak_constraint_error)},
-                              {"bodies", bodies}};
+    const nlohmann::json summary = {
+        {"scene", opt.scene},
+        {"steps", steps},
+        {"time", world.time()},
+        {"dt", dt},
+        {"substeps", world.settings().substep_count},
+        {"threads", world.settings().thread_count},
+        {"body_count", bodies.size()},
+        {"state_hash", hex(world.state_hash())},
+        {"ms_per_step",
+         {{"mean", sum / static_cast<double>(steps)},
+          {"median", sorted[sorted.size() / 2]},
+          {"max", *std::max_element(step_ms.begin(), step_ms.end())}}},
+        {"stage_ms_mean", stages},
+        {"contact", tally.summary(world)},
+        {"energy",
+         {{"initial_kinetic", e0.kinetic},
+          {"initial_potential", e0.potential},
+          {"kinetic", e1.kinetic},
+          {"potential", e1.potential},
+          {"total_drift", (e1.kinetic + e1.potential) - (e0.kinetic + e0.potential)}}},
+        {"warnings",
+         {{"non_finite_bodies", world.warnings().non_finite_bodies},
+          {"gyroscopic_fallbacks", world.warnings().gyroscopic_fallbacks},
+          {"modal_integrator_switches", world.warnings().modal_integrator_switches},
+          {"modal_non_finite", world.warnings().modal_non_finite}}},
+        {"constraints", constraint_summary(world, peak_constraint_error)},
+        {"bodies", bodies}};
 
+    // Frame capture adds its block to a copy: the summary above stays as it always was.
+    nlohmann::json out = summary;
     if (capture)
-        summary["capture"] = capture->summary();
-    const std::string text = summary.dump(2) + "\n";
+        out["capture"] = capture->summary();
+    const std::string text = out.dump(2) + "\n";
     if (!opt.csv_out.empty())
         if (std::string err = write_file_atomically(opt.csv_out, csv.str()); !err.empty()) {
             print_error(err);
