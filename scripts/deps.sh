@@ -15,6 +15,8 @@ packages=(
   libbenchmark-dev     # bench/
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)
   libglfw3-dev         # editor/: the window of the interactive editor
+  libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image_write (PNG)
+  libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri  # at run time: Mesa's EGL (surfaceless) and llvmpipe
 )
 
 missing=()

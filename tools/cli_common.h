@@ -2,6 +2,7 @@
 // Shared pieces of the `supermodal` command line: exit codes, atomic file output, JSON of engine types.
 #pragma once
 
+#include "frame_capture.h"
 #include "supermodal/body.h"
 #include "supermodal/scene.h"
 
@@ -38,7 +39,8 @@ struct RunOptions {
     std::string csv_out;
     int csv_every = 1;
     bool quiet = false;
-    int threads = 0; ///< Overrides the scene's settings.threads when > 0.
+    int threads = 0;        ///< Overrides the scene's settings.threads when > 0.
+    CaptureOptions capture; ///< --frames/--video: rendered frames of the run.
 };
 int run_command(const RunOptions& options);
 

@@ -163,6 +163,26 @@ int run_command(const RunOptions& opt)
         return k_exit_bad_input;
     }
     const long long steps = static_cast<long long>(wanted);
+    std::unique_ptr<FrameCapture> capture;
+    if (opt.capture.enabled() || opt.capture.every_given || opt.capture.size_given) {
+        Result<std::unique_ptr<FrameCapture>> opened = FrameCapture::open(opt.capture, *scene, world);
+        if (!opened) {
+            print_error(opened.error().message());
+            // A machine without EGL is not the user's input's fault.
+            return opened.error().where == "render" ? k_exit_internal : k_exit_bad_input;
+        }
+        capture = std::move(*opened);
+    }
+    const auto capture_frame = [&](long long step) {
+        if (!capture)
+            return true;
+        Status s = capture->maybe_capture(world, step);
+        if (!s)
+            print_error("frame capture: " + s.error().message());
+        return static_cast<bool>(s);
+    };
+    if (!capture_frame(0))
+        return k_exit_internal;
 
     std::ostringstream csv;
     if (!opt.csv_out.empty()) {
@@ -187,7 +207,14 @@ int run_command(const RunOptions& opt)
             trace_rows(world, csv);
         if (i % 64 == 0 || i == steps)
             progress.update(i);
+        if (!capture_frame(i))
+            return k_exit_internal;
     }
+    if (capture)
+        if (Status s = capture->finish(); !s) {
+            print_error(s.error().message());
+            return k_exit_internal;
+        }
 
     const Energies e1 = total_energy(world);
     std::vector<double> sorted = step_ms;
@@ -231,7 +258,11 @@ int run_command(const RunOptions& opt)
         {"constraints", constraint_summary(world, peak_constraint_error)},
         {"bodies", bodies}};
 
-    const std::string text = summary.dump(2) + "\n";
+    // Frame capture adds its block to a copy: the summary above stays as it always was.
+    nlohmann::json out = summary;
+    if (capture)
+        out["capture"] = capture->summary();
+    const std::string text = out.dump(2) + "\n";
     if (!opt.csv_out.empty())
         if (std::string err = write_file_atomically(opt.csv_out, csv.str()); !err.empty()) {
             print_error(err);

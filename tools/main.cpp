@@ -34,6 +34,17 @@ int main(int argc, char** argv)
                      "Threads for the contact stages (default: the scene's settings.threads); results are "
                      "identical for any count")
         ->check(CLI::Range(1, 64));
+    run_cmd->add_option("--frames", run.capture.frames_dir,
+                        "Write PNG frames (frame_000000.png, ...) into this directory, made if missing");
+    auto* every = run_cmd->add_option("--every", run.capture.every, "A frame every K steps (default 1)")
+                      ->check(CLI::PositiveNumber);
+    auto* size =
+        run_cmd->add_option("--size", run.capture.size, "Frame size WxH in pixels (default 1280x720)");
+    run_cmd
+        ->add_option("--msaa", run.capture.msaa,
+                     "Anti-aliasing samples per pixel, 1 (fastest) to 16 (default 4)")
+        ->check(CLI::Range(1, 16));
+    run_cmd->add_option("--video", run.capture.video, "Also encode the frames into this .mp4 (needs ffmpeg)");
     run_cmd->add_flag("--quiet", run.quiet, "No progress bar (it is shown only on a terminal anyway)");
 
     cli::InspectOptions inspect;
@@ -66,6 +77,8 @@ int main(int argc, char** argv)
     }
     run.has_seconds = seconds->count() > 0;
     run.has_steps = steps->count() > 0;
+    run.capture.every_given = every->count() > 0;
+    run.capture.size_given = size->count() > 0;
     try {
         if (run_cmd->parsed())
             return cli::run_command(run);

@@ -9,6 +9,7 @@
 #include "supermodal/world.h"
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,16 @@ struct SceneConstraint {
     std::string body_a;
     std::string body_b;
 };
+/// An orbit camera (scene "camera"; docs/scene_format.md): it looks at `target` from `distance` away,
+/// turned by yaw about the world's Y axis and raised by pitch above the horizon. World is Y-up.
+struct CameraDef {
+    std::optional<Vec3> target; ///< Point looked at [m], world; absent: the centre of the bodies' bounds.
+    double distance = 0.0;      ///< From target to the eye [m], ≥ 0; 0: far enough to frame every body.
+    double yaw_deg = 30.0;      ///< About +Y [°]; 0 looks from +Z towards −Z, 90 from +X.
+    double pitch_deg = 20.0;    ///< Above the horizon [°], in [−89, 89]; positive looks down.
+    double fov_deg = 40.0;      ///< Vertical field of view [°], in [1, 150].
+};
+
 /// A parsed, validated scene.
 struct Scene {
     std::string source; ///< File it came from, or "<string>".
@@ -57,6 +68,7 @@ struct Scene {
     std::vector<MaterialDef> materials;       ///< In file order.
     std::vector<SceneBody> bodies;            ///< In file order; creation order in the world.
     std::vector<SceneConstraint> constraints; ///< In file order, created after the bodies.
+    CameraDef camera;                         ///< How renderers look at the scene (not physics).
 };
 
 /// Reads and validates a scene file.

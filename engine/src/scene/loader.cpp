@@ -28,8 +28,8 @@ using scene_io::Json;
 using scene_io::pointer_join;
 using scene_io::Reader;
 
-const std::vector<std::string_view> k_top_keys = {"settings", "materials", "include", "bodies",
-                                                  "constraints"};
+const std::vector<std::string_view> k_top_keys = {"settings", "materials",   "include",
+                                                  "bodies",   "constraints", "camera"};
 const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
@@ -85,6 +85,27 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
         return;
     if (Status status = validate(world); !status)
         r.fail(where, "invalid settings: " + status.error().message());
+}
+
+const std::vector<std::string_view> k_camera_keys = {"target", "distance", "yaw", "pitch", "fov"};
+
+void read_camera(Reader& r, const Json& root, Scene& out_scene)
+{
+    const Json* camera = r.member(root, "camera");
+    if (camera == nullptr || !r.check_object(*camera, "/camera", k_camera_keys))
+        return;
+    const std::string where = "/camera";
+    CameraDef& out = out_scene.camera;
+    if (const Json* target = r.member(*camera, "target")) {
+        Vec3 t{};
+        r.read_vec3(*target, where + "/target", scene_io::any_number(), t);
+        out.target = t;
+    }
+    r.field_number(*camera, where, "distance", scene_io::at_least(0.0), out.distance);
+    r.field_number(*camera, where, "yaw", scene_io::any_number(), out.yaw_deg);
+    // ±89°: at ±90° the view direction is parallel to the up axis and the orbit's frame degenerates.
+    r.field_number(*camera, where, "pitch", scene_io::closed(-89.0, 89.0), out.pitch_deg);
+    r.field_number(*camera, where, "fov", scene_io::closed(1.0, 150.0), out.fov_deg);
 }
 
 void read_material(Reader& r, const Json& value, const std::string& where, MaterialDef& out_material)
@@ -283,6 +304,7 @@ Result<Scene> read_scene(const Json& root, const std::string& source, IncludeCon
     reader.check_object(root, "", k_top_keys);
     read_settings(reader, root, scene);
     read_materials(reader, root, scene);
+    read_camera(reader, root, scene);
     read_includes(reader, root, ctx, scene);
     scene_io::read_bodies(reader, root, scene);
     scene_io::read_constraints(reader, root, scene);

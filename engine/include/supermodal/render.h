@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// Offscreen rendering of a World (library supermodal_render; the engine itself never touches GL).
+// Headless through EGL on Mesa's surfaceless platform into a framebuffer object, OpenGL ES 3.0:
+// works with no GPU and no display (llvmpipe), as in CI. Bodies are tessellated once per distinct
+// shape; modal bodies are deformed per vertex on the CPU through the public modal API. See
+// docs/rendering.md. This header includes no GL or EGL header: the renderer is an opaque handle.
+#pragma once
+
+#include "supermodal/entity.h"
+#include "supermodal/math.h"
+#include "supermodal/result.h"
+#include "supermodal/scene.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace supermodal
+{
+
+class World;
+
+/// Deliberately broken renders, for tests that prove the golden-image comparison can fail.
+enum class RenderFault : uint8_t {
+    None,        ///< A correct render.
+    FlatShading, ///< The fragment shader ignores the lights (a "broken shader").
+    FlippedYaw,  ///< The camera looks from the opposite side (a "wrong camera").
+};
+
+/// How to make a renderer. Start from default_render_def() and change what differs.
+struct RenderDef {
+    int width = 1280;                      ///< Image width [px], in [16, 8192].
+    int height = 720;                      ///< Image height [px], in [16, 8192].
+    int samples = 4;                       ///< Multisample anti-aliasing samples per pixel, 1 (off) to 16.
+    int tessellation = 32;                 ///< Mesh segments around a body's equator, in [8, 512].
+    bool grid = true;                      ///< Draw static planes (or, with none, y = 0) as a grid.
+    Vec3 sky_top{0.58, 0.68, 0.80};        ///< Background at the top of the image, RGB in [0, 1].
+    Vec3 sky_bottom{0.90, 0.91, 0.93};     ///< Background at the bottom, RGB in [0, 1].
+    double deformation_scale = 1.0;        ///< Multiplies modal displacements for display [-], ≥ 0
+                                           ///< (> 1 exaggerates millimetre bending to see it).
+    RenderFault fault = RenderFault::None; ///< Test hook; leave None.
+};
+/// The documented starting point: 1280×720, 4× MSAA, 32 segments, grid on, true deformation.
+[[nodiscard]] RenderDef default_render_def();
+/// Checks the ranges in the field comments.
+[[nodiscard]] Status validate(const RenderDef& def);
+
+/// An 8-bit RGBA image, rows top to bottom, 4 bytes per pixel.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+/// Which poses a frame shows.
+enum class PoseSource : uint8_t {
+    Current,      ///< The state after the last step (frame capture between step() calls).
+    Interpolated, ///< Blended between the last two steps by World::interpolation_alpha() (advance()).
+};
+
+/// The camera a frame uses: `camera` with an absent target or a zero distance filled in so that every
+/// non-plane body's world box fits in the view (a margin of 10%). Yaw, pitch and fov are kept.
+[[nodiscard]] CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect);
+
+/// An offscreen renderer with its own EGL display, context and framebuffer. One thread at a time.
+class Renderer
+{
+  public:
+    /// Opens EGL (surfaceless Mesa platform), makes an OpenGL ES 3.0 context and a framebuffer of
+    /// def's size. Errors name what is missing (no EGL display, no ES 3 context, ...).
+    [[nodiscard]] static Result<Renderer> create(const RenderDef& def = default_render_def());
+    ~Renderer();
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    [[nodiscard]] const RenderDef& settings() const;
+    /// "OpenGL ES 3.2 Mesa 22.3.6 / llvmpipe (LLVM 15.0.6, 256 bits)": what the context runs on.
+    [[nodiscard]] std::string device_name() const;
+
+    /// Colour of a body, RGB in [0, 1]; bodies without one get a stable colour from their index.
+    void set_body_color(Entity body, const Vec3& rgb);
+    /// Draws the world as seen by `camera` (absent parts framed by frame_bodies()) into `out`.
+    Status render(const World& world, const CameraDef& camera, Image& out,
+                  PoseSource poses = PoseSource::Current);
+    /// Distinct shapes tessellated so far (the mesh cache's size; a shape change adds one).
+    [[nodiscard]] int cached_mesh_count() const;
+
+    struct Impl;
+
+  private:
+    explicit Renderer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> m_impl;
+};
+
+/// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
+/// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1].
+[[nodiscard]] std::vector<Vec3> scene_body_colors(const Scene& scene);
+
+// ---- Images ---------------------------------------------------------------------------------------
+
+/// Writes a PNG (stb_image_write). Errors name the path.
+Status write_png(const std::string& path, const Image& image);
+/// Reads a PNG as RGBA.
+[[nodiscard]] Result<Image> read_png(const std::string& path);
+
+/// Pixel-wise comparison of two images of the same size.
+struct ImageDiff {
+    int max_difference = 0;         ///< Largest per-channel difference [0, 255].
+    long long differing_pixels = 0; ///< Pixels with some channel differing by more than the tolerance.
+    double differing_fraction = 0.0;
+    Image diff; ///< Differing pixels red over a faded copy of `expected`.
+};
+/// Compares; `tolerance` is the largest per-channel difference [0, 255] that still counts as equal.
+/// Errors when the sizes differ.
+[[nodiscard]] Result<ImageDiff> compare_images(const Image& actual, const Image& expected, int tolerance);
+
+} // namespace supermodal

@@ -1,0 +1,207 @@
+// SPDX-License-Identifier: MIT
+#include "render/gl_context.h"
+
+#include <EGL/eglext.h>
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+
+namespace supermodal::render
+{
+namespace
+{
+
+std::string egl_error_text(const char* step)
+{
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s failed (EGL error 0x%04x)", step,
+                  static_cast<unsigned>(eglGetError()));
+    return buf;
+}
+
+bool has_extension(const char* list, const char* name)
+{
+    if (list == nullptr)
+        return false;
+    const size_t n = std::strlen(name);
+    for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + n, name))
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return true;
+    return false;
+}
+
+Error render_error(std::string what)
+{
+    return Error{"", "render", std::move(what)};
+}
+
+} // namespace
+
+// The surfaceless display is one per process (eglGetPlatformDisplay returns the same handle every
+// time) and eglTerminate is not reference-counted: terminate only when the last context goes.
+std::mutex g_display_mutex;
+int g_display_users = 0;
+
+GlContext::~GlContext()
+{
+    if (m_display == EGL_NO_DISPLAY)
+        return;
+    eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (m_context != EGL_NO_CONTEXT)
+        eglDestroyContext(m_display, m_context);
+    const std::lock_guard lock(g_display_mutex);
+    if (--g_display_users == 0)
+        eglTerminate(m_display);
+}
+
+Status GlContext::open()
+{
+    // Client extensions (EGL 1.5 / EGL_EXT_client_extensions): is the surfaceless platform there?
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
+        return render_error("no EGL display: the EGL library lacks EGL_MESA_platform_surfaceless (install "
+                            "libegl1 and libegl-mesa0; client extensions: " +
+                            std::string(client ? client : "none") + ")");
+    auto get_platform_display =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (get_platform_display == nullptr)
+        return render_error("no EGL display: eglGetPlatformDisplayEXT is missing");
+    m_display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (m_display == EGL_NO_DISPLAY)
+        return render_error("no EGL display: " + egl_error_text("eglGetPlatformDisplayEXT(surfaceless)"));
+    EGLint major = 0, minor = 0;
+    {
+        const std::lock_guard lock(g_display_mutex);
+        if (!eglInitialize(m_display, &major, &minor)) {
+            m_display = EGL_NO_DISPLAY;
+            return render_error("no EGL display: " + egl_error_text("eglInitialize") +
+                                " (Mesa's drivers: install libgl1-mesa-dri)");
+        }
+        ++g_display_users;
+    }
+    const char* display_ext = eglQueryString(m_display, EGL_EXTENSIONS);
+    if (!has_extension(display_ext, "EGL_KHR_surfaceless_context") ||
+        !has_extension(display_ext, "EGL_KHR_no_config_context"))
+        return render_error("EGL display lacks EGL_KHR_surfaceless_context or EGL_KHR_no_config_context");
+    if (!eglBindAPI(EGL_OPENGL_ES_API))
+        return render_error("no OpenGL ES: " + egl_error_text("eglBindAPI"));
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
+    m_context = eglCreateContext(m_display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    if (m_context == EGL_NO_CONTEXT)
+        return render_error("no OpenGL ES 3.0 context: " + egl_error_text("eglCreateContext"));
+    if (Status s = make_current(); !s)
+        return s;
+    const auto text = [](GLenum name) {
+        const auto* s = reinterpret_cast<const char*>(glGetString(name));
+        return std::string(s ? s : "?");
+    };
+    m_device = text(GL_VERSION) + " / " + text(GL_RENDERER);
+    return {};
+}
+
+Status GlContext::make_current()
+{
+    if (!eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_context))
+        return render_error(egl_error_text("eglMakeCurrent"));
+    return {};
+}
+
+Framebuffer::~Framebuffer()
+{
+    release();
+}
+
+void Framebuffer::release()
+{
+    if (m_fbo != 0)
+        glDeleteFramebuffers(1, &m_fbo);
+    if (m_resolve_fbo != 0)
+        glDeleteFramebuffers(1, &m_resolve_fbo);
+    const GLuint buffers[] = {m_color, m_depth, m_resolve_color};
+    for (GLuint b : buffers)
+        if (b != 0)
+            glDeleteRenderbuffers(1, &b);
+    m_fbo = m_resolve_fbo = m_color = m_depth = m_resolve_color = 0;
+}
+
+Status Framebuffer::create(int width, int height, int samples)
+{
+    release();
+    m_width = width;
+    m_height = height;
+    GLint max_samples = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    m_samples = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
+    const GLsizei s = m_samples > 1 ? m_samples : 0;
+    glGenFramebuffers(1, &m_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
+    glGenRenderbuffers(1, &m_color);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_color);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_color);
+    glGenRenderbuffers(1, &m_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_depth);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depth);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return render_error("framebuffer incomplete (" + std::to_string(width) + "x" +
+                            std::to_string(height) + ", " + std::to_string(m_samples) + " samples)");
+    if (m_samples > 1) {
+        glGenFramebuffers(1, &m_resolve_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_resolve_fbo);
+        glGenRenderbuffers(1, &m_resolve_color);
+        glBindRenderbuffer(GL_RENDERBUFFER, m_resolve_color);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_resolve_color);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return render_error("resolve framebuffer incomplete");
+    }
+    if (std::string e = gl_errors(); !e.empty())
+        return render_error("framebuffer: " + e);
+    return {};
+}
+
+void Framebuffer::bind() const
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
+    glViewport(0, 0, m_width, m_height);
+}
+
+void Framebuffer::read(std::vector<uint8_t>& rgba) const
+{
+    GLuint source = m_fbo;
+    if (m_samples > 1) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_resolve_fbo);
+        glBlitFramebuffer(0, 0, m_width, m_height, 0, 0, m_width, m_height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        source = m_resolve_fbo;
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    const size_t row = static_cast<size_t>(m_width) * 4;
+    rgba.resize(row * static_cast<size_t>(m_height));
+    glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    // GL's first row is the bottom one; images here start at the top.
+    std::vector<uint8_t> tmp(row);
+    for (int y = 0; y < m_height / 2; ++y) {
+        uint8_t* a = rgba.data() + static_cast<size_t>(y) * row;
+        uint8_t* b = rgba.data() + static_cast<size_t>(m_height - 1 - y) * row;
+        std::memcpy(tmp.data(), a, row);
+        std::memcpy(a, b, row);
+        std::memcpy(b, tmp.data(), row);
+    }
+}
+
+std::string gl_errors()
+{
+    std::string out;
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%sGL error 0x%04x", out.empty() ? "" : ", ", e);
+        out += buf;
+    }
+    return out;
+}
+
+} // namespace supermodal::render

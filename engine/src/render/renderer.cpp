@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: MIT
+// Renderer: EGL context + framebuffer + programs + mesh cache; draws sky, bodies, then ground grids.
+#include "render/gl_context.h"
+#include "render/meshes.h"
+#include "render/shaders.h"
+#include "render/view.h"
+#include "supermodal/body.h"
+#include "supermodal/geometry.h"
+#include "supermodal/modal.h"
+#include "supermodal/render.h"
+#include "supermodal/world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace supermodal
+{
+
+RenderDef default_render_def()
+{
+    return RenderDef{};
+}
+
+Status validate(const RenderDef& d)
+{
+    const auto bad = [](const char* field, const std::string& what) { return Error{"", field, what}; };
+    if (d.width < 16 || d.width > 8192 || d.height < 16 || d.height > 8192)
+        return bad("width/height", "expected sizes in [16, 8192] px, found " + std::to_string(d.width) + "x" +
+                                       std::to_string(d.height));
+    if (d.samples < 1 || d.samples > 16)
+        return bad("samples", "expected 1 to 16, found " + std::to_string(d.samples));
+    if (d.tessellation < 8 || d.tessellation > 512)
+        return bad("tessellation", "expected 8 to 512, found " + std::to_string(d.tessellation));
+    if (!(std::isfinite(d.deformation_scale) && d.deformation_scale >= 0.0))
+        return bad("deformation_scale", "expected a finite number >= 0");
+    for (const Vec3& c : {d.sky_top, d.sky_bottom})
+        if (!is_finite(c))
+            return bad("sky", "expected finite colours");
+    return {};
+}
+
+namespace
+{
+
+// Stable colour of the body at entity index i when the host set none: golden-angle hues, soft.
+Vec3 index_color(uint32_t i)
+{
+    const double h = std::fmod(0.08 + 0.618033988749895 * i, 1.0) * 6.0;
+    const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
+    Vec3 rgb;
+    switch (static_cast<int>(h)) {
+    case 0:
+        rgb = {1, x, 0};
+        break;
+    case 1:
+        rgb = {x, 1, 0};
+        break;
+    case 2:
+        rgb = {0, 1, x};
+        break;
+    case 3:
+        rgb = {0, x, 1};
+        break;
+    case 4:
+        rgb = {x, 0, 1};
+        break;
+    default:
+        rgb = {1, 0, x};
+        break;
+    }
+    return 0.35 * Vec3{1, 1, 1} + 0.5 * rgb; // pastel: lighting reads better than on pure hues
+}
+
+void set_vec3(GLint loc, const Vec3& v)
+{
+    glUniform3f(loc, static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z));
+}
+
+// One body's render-side state: which cached mesh, and a skin when it is modal.
+struct BodyEntry {
+    std::string key;
+    const render::GpuMesh* mesh = nullptr;
+    std::unique_ptr<render::ModalSkin> skin;
+};
+
+} // namespace
+
+struct Renderer::Impl {
+    RenderDef def;
+    render::GlContext context;
+    render::Framebuffer framebuffer;
+    render::Programs programs;
+    render::MeshCache meshes;
+    std::map<Entity, BodyEntry> bodies;
+    std::map<Entity, Vec3> colors;
+    const World* last_world = nullptr;
+    GLuint empty_vao = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
+    std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
+
+    ~Impl()
+    {
+        if (context.make_current()) {
+            bodies.clear(); // skins hold GL buffers: free them while the context is current
+            glDeleteVertexArrays(1, &empty_vao);
+            glDeleteVertexArrays(1, &grid_vao);
+            glDeleteBuffers(1, &grid_vbo);
+            glDeleteVertexArrays(1, &shadow_vao);
+            glDeleteBuffers(1, &shadow_vbo);
+            render::delete_programs(programs);
+        }
+    }
+
+    Status init()
+    {
+        if (Status s = context.open(); !s)
+            return s;
+        if (Status s = framebuffer.create(def.width, def.height, def.samples); !s)
+            return s;
+        if (Status s = render::compile_programs(programs); !s)
+            return s;
+        glGenVertexArrays(1, &empty_vao);
+        glGenVertexArrays(1, &grid_vao);
+        glGenBuffers(1, &grid_vbo);
+        glBindVertexArray(grid_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, grid_vbo);
+        glBufferData(GL_ARRAY_BUFFER, 4 * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+        glGenVertexArrays(1, &shadow_vao);
+        glGenBuffers(1, &shadow_vbo);
+        glBindVertexArray(shadow_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, shadow_vbo);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                              reinterpret_cast<const void*>(3 * sizeof(float)));
+        glBindVertexArray(0);
+        if (std::string e = render::gl_errors(); !e.empty())
+            return Error{"", "render", "setting up: " + e};
+        return {};
+    }
+
+    BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape)
+    {
+        BodyEntry& e = bodies[b];
+        std::string key = render::shape_key(shape, def.tessellation);
+        const ModalBasis* basis = body_modal_basis(world, b);
+        if (e.mesh == nullptr || e.key != key) { // new body or a changed shape
+            e.mesh = &meshes.get(shape, def.tessellation, key);
+            e.key = std::move(key);
+            e.skin.reset();
+        }
+        if (basis == nullptr)
+            e.skin.reset();
+        else if (!e.skin || e.skin->basis() != basis)
+            e.skin = std::make_unique<render::ModalSkin>(*e.mesh, basis);
+        return e;
+    }
+
+    // Drawn last at the far plane with LEQUAL: only pixels nothing else covered are shaded.
+    void draw_sky()
+    {
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+        glUseProgram(programs.sky);
+        set_vec3(programs.sky_top, def.sky_top);
+        set_vec3(programs.sky_bottom, def.sky_bottom);
+        glBindVertexArray(empty_vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_LESS);
+    }
+
+    void draw_grid(const World& world, const render::View& view, const Vec3& normal_in, double offset,
+                   PoseSource poses);
+    void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
+                      const Vec3& a0, const Vec3& a1, PoseSource poses);
+    Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses);
+};
+
+void Renderer::Impl::draw_grid(const World& world, const render::View& view, const Vec3& normal_in,
+                               double offset, PoseSource poses)
+{
+    const Vec3 n = normalized(normal_in);
+    // In-plane axes: the world axis least along n, made perpendicular.
+    const Vec3 pick = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    const Vec3 a0 = normalized(pick - dot(pick, n) * n);
+    const Vec3 a1 = cross(n, a0);
+    const Vec3 origin = offset * n;
+    // A square around the target's foot on the plane, past where the grid has faded into the sky.
+    const Vec3 foot = view.target - (dot(view.target, n) - offset) * n;
+    const double half = 14.0 * view.distance;
+    float quad[12];
+    const double corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    for (int i = 0; i < 4; ++i) {
+        const Vec3 c = foot + half * corners[i][0] * a0 + half * corners[i][1] * a1;
+        for (int k = 0; k < 3; ++k)
+            quad[i * 3 + k] = static_cast<float>(c[k]);
+    }
+    // Minor lines at a power of ten near a tenth of the view distance; major lines every ten.
+    const double spacing = std::pow(10.0, std::round(std::log10(view.distance))) / 10.0;
+    const float axes[9] = {static_cast<float>(a0.x), static_cast<float>(a0.y), static_cast<float>(a0.z),
+                           static_cast<float>(a1.x), static_cast<float>(a1.y), static_cast<float>(a1.z),
+                           static_cast<float>(n.x),  static_cast<float>(n.y),  static_cast<float>(n.z)};
+    glUseProgram(programs.grid);
+    glUniformMatrix4fv(programs.grid_view_proj, 1, GL_FALSE, view.view_proj.data());
+    set_vec3(programs.grid_eye, view.eye);
+    set_vec3(programs.grid_origin, origin);
+    glUniformMatrix3fv(programs.grid_axes, 1, GL_FALSE, axes);
+    glUniform1f(programs.grid_spacing, static_cast<float>(spacing));
+    glUniform2f(programs.grid_fade, static_cast<float>(2.5 * view.distance),
+                static_cast<float>(9.0 * view.distance));
+    set_vec3(programs.grid_fog, def.sky_bottom);
+    glBindVertexArray(grid_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, grid_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+    // Pulled slightly towards the eye in depth so bodies resting on the plane do not flicker into it.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glPolygonOffset(0.5f, 0.5f); // shadows: just in front of the grid, still behind resting bodies
+    draw_shadows(world, view, n, offset, a0, a1, poses);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void Renderer::Impl::draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
+                                  const Vec3& a0, const Vec3& a1, PoseSource poses)
+{
+    // Each body's box centre dropped onto the plane; wider, softer and fainter the higher it is.
+    shadow_vertices.clear();
+    const double corners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
+    for (Entity b : world_bodies(world)) {
+        const ShapeDef& shape = body_shape(world, b);
+        if (shape.type == ShapeType::Plane)
+            continue;
+        const bool interpolated = poses == PoseSource::Interpolated;
+        const Aabb box =
+            world_aabb(shape, interpolated ? body_interpolated_position(world, b) : body_position(world, b),
+                       interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
+        const Vec3 c = 0.5 * (box.min + box.max);
+        const Vec3 h = 0.5 * (box.max - box.min);
+        // Extent across the plane: the box's half-size with the part along the normal removed.
+        const Vec3 across = h - Vec3{std::abs(n.x) * h.x, std::abs(n.y) * h.y, std::abs(n.z) * h.z};
+        const double radius = length(across) + 1e-6;
+        const double height = dot(c, n) - offset;
+        if (height < 0.0 || length(c - view.target) > 20.0 * view.distance)
+            continue; // under the plane, or too far to see
+        const double strength = 0.5 * std::clamp(1.0 - height / (4.0 * radius + 0.2), 0.0, 1.0);
+        if (strength <= 0.0)
+            continue;
+        const double r = 1.2 * radius + 0.5 * height;
+        const Vec3 drop = c - height * n;
+        for (const auto& k : corners) {
+            const Vec3 p = drop + r * k[0] * a0 + r * k[1] * a1;
+            shadow_vertices.insert(shadow_vertices.end(),
+                                   {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
+                                    static_cast<float>(k[0]), static_cast<float>(k[1]),
+                                    static_cast<float>(strength)});
+        }
+    }
+    if (shadow_vertices.empty())
+        return;
+    glUseProgram(programs.shadow);
+    glUniformMatrix4fv(programs.shadow_view_proj, 1, GL_FALSE, view.view_proj.data());
+    glBindVertexArray(shadow_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, shadow_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shadow_vertices.size() * sizeof(float)),
+                 shadow_vertices.data(), GL_STREAM_DRAW);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_DST_COLOR, GL_ZERO); // multiply: darken what the grid drew
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(shadow_vertices.size() / 6));
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+}
+
+Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses)
+{
+    if (Status s = context.make_current(); !s)
+        return s;
+    if (last_world != &world) { // another world: its handles mean other bodies
+        bodies.clear();
+        last_world = &world;
+    }
+    const double aspect = static_cast<double>(def.width) / def.height;
+    CameraDef camera = frame_bodies(world, camera_in, aspect);
+    if (def.fault == RenderFault::FlippedYaw)
+        camera.yaw_deg += 180.0;
+    const CameraDef framed =
+        frame_bodies(world, CameraDef{.target = std::nullopt, .fov_deg = camera.fov_deg}, aspect);
+    const render::View view = render::make_view(camera, aspect, framed.distance);
+
+    framebuffer.bind();
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+
+    glUseProgram(programs.body);
+    glUniformMatrix4fv(programs.view_proj, 1, GL_FALSE, view.view_proj.data());
+    set_vec3(programs.eye, view.eye);
+    // Lights move with the camera (key above-left-front of the view, fill from the right), so every
+    // view is lit from the front whatever its yaw.
+    const Vec3 fwd = normalized(view.target - view.eye);
+    const Vec3 right = normalized(cross(fwd, Vec3{0, 1, 0}));
+    set_vec3(programs.key_dir, normalized(-0.55 * right + Vec3{0, 1.1, 0} - 0.6 * fwd));
+    set_vec3(programs.fill_dir, normalized(0.8 * right + Vec3{0, 0.2, 0} - 0.5 * fwd));
+    glUniform1i(programs.flat, def.fault == RenderFault::FlatShading ? 1 : 0);
+    const double alpha = poses == PoseSource::Interpolated ? world.interpolation_alpha() : 1.0;
+
+    std::vector<std::pair<Vec3, double>> planes;
+    for (Entity b : world_bodies(world)) {
+        const ShapeDef& shape = body_shape(world, b);
+        if (shape.type == ShapeType::Plane) {
+            planes.emplace_back(shape.plane_normal, shape.plane_offset);
+            continue;
+        }
+        BodyEntry& e = entry(world, b, shape);
+        const bool interpolated = poses == PoseSource::Interpolated;
+        const render::Mat4 model = render::model_matrix(
+            interpolated ? body_interpolated_position(world, b) : body_position(world, b),
+            interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
+        glUniformMatrix4fv(programs.model, 1, GL_FALSE, model.data());
+        auto color = colors.find(b);
+        set_vec3(programs.color, color != colors.end() ? color->second : index_color(b.index));
+        if (e.skin) {
+            const BodyModalState state = body_modal_state(world, b);
+            e.skin->observe(world.step_count(), state.amplitudes);
+            e.skin->update(alpha, def.deformation_scale);
+            glBindVertexArray(e.skin->vao());
+            glDrawElements(GL_TRIANGLES, e.skin->index_count(), GL_UNSIGNED_INT, nullptr);
+        } else {
+            glBindVertexArray(e.mesh->vao);
+            glDrawElements(GL_TRIANGLES, e.mesh->index_count, GL_UNSIGNED_INT, nullptr);
+        }
+    }
+    glDisable(GL_CULL_FACE);
+    if (def.grid) {
+        if (planes.empty())
+            planes.emplace_back(Vec3{0, 1, 0}, 0.0);
+        for (const auto& [normal, offset] : planes)
+            draw_grid(world, view, normal, offset, poses);
+    }
+    draw_sky();
+    glBindVertexArray(0);
+    out.width = def.width;
+    out.height = def.height;
+    framebuffer.read(out.rgba);
+    if (std::string e = render::gl_errors(); !e.empty())
+        return Error{"", "render", "drawing a frame: " + e};
+    return {};
+}
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+Result<Renderer> Renderer::create(const RenderDef& def)
+{
+    if (Status s = validate(def); !s)
+        return Error{"", "render/" + s.error().where, s.error().what};
+    auto impl = std::make_unique<Impl>();
+    impl->def = def;
+    if (Status s = impl->init(); !s)
+        return s.error();
+    return Renderer(std::move(impl));
+}
+
+const RenderDef& Renderer::settings() const
+{
+    return m_impl->def;
+}
+std::string Renderer::device_name() const
+{
+    return m_impl->context.device_name();
+}
+void Renderer::set_body_color(Entity body, const Vec3& rgb)
+{
+    m_impl->colors[body] =
+        Vec3{std::clamp(rgb.x, 0.0, 1.0), std::clamp(rgb.y, 0.0, 1.0), std::clamp(rgb.z, 0.0, 1.0)};
+}
+Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses)
+{
+    return m_impl->render(world, camera, out, poses);
+}
+int Renderer::cached_mesh_count() const
+{
+    return m_impl->meshes.size();
+}
+
+} // namespace supermodal

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+#include "render/shaders.h"
+
+#include <string>
+
+namespace supermodal::render
+{
+namespace
+{
+
+// Full-screen triangle from gl_VertexID; vertical gradient.
+const char* k_sky_vs = R"(#version 300 es
+out float v_t;
+void main() {
+    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
+    v_t = p.y * 0.5 + 0.5;
+    gl_Position = vec4(p, 1.0, 1.0);
+})";
+const char* k_sky_fs = R"(#version 300 es
+precision highp float;
+in float v_t;
+uniform vec3 u_top, u_bottom;
+out vec4 o_color;
+void main() { o_color = vec4(mix(u_bottom, u_top, clamp(v_t, 0.0, 1.0)), 1.0); })";
+
+// Bodies: vertices in the shape frame, u_model = world_from_shape (rotation + translation only, so its
+// upper 3x3 also turns normals).
+const char* k_body_vs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_model, u_view_proj;
+out vec3 v_world, v_normal;
+void main() {
+    vec4 w = u_model * vec4(a_position, 1.0);
+    v_world = w.xyz;
+    v_normal = mat3(u_model) * a_normal;
+    gl_Position = u_view_proj * w;
+})";
+// Key + fill directional lights, hemisphere ambient, a little Blinn-Phong; lit in linear space with
+// gamma 2 (square in, square root out) instead of 2.2: two pow() calls per pixel cost llvmpipe more
+// than the difference shows.
+const char* k_body_fs = R"(#version 300 es
+precision highp float;
+in vec3 v_world, v_normal;
+uniform vec3 u_color, u_eye, u_key_dir, u_fill_dir;
+uniform int u_flat;
+out vec4 o_color;
+void main() {
+    vec3 base = u_color * u_color;
+    if (u_flat != 0) { o_color = vec4(u_color, 1.0); return; }
+    vec3 n = normalize(v_normal);
+    vec3 v = normalize(u_eye - v_world);
+    float key = max(dot(n, u_key_dir), 0.0);
+    float fill = max(dot(n, u_fill_dir), 0.0);
+    vec3 ambient = mix(vec3(0.30, 0.27, 0.24), vec3(0.55, 0.62, 0.75), 0.5 + 0.5 * n.y);
+    vec3 h = normalize(u_key_dir + v);
+    float spec = pow(max(dot(n, h), 0.0), 40.0) * 0.18 * step(0.0, dot(n, u_key_dir));
+    float edge = 1.0 - max(dot(n, v), 0.0);
+    float rim = edge * edge * edge * 0.08;
+    vec3 lit = base * (0.45 * ambient + 0.85 * key * vec3(1.0, 0.97, 0.92) + 0.25 * fill) + spec + rim;
+    o_color = vec4(sqrt(lit), 1.0);
+})";
+
+// Ground grid on a plane: u_axes = the plane's two in-plane unit axes (columns 0, 1) and its normal
+// (column 2); minor lines every u_spacing, major every 10; fades into fog far away.
+const char* k_grid_vs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_proj;
+out vec3 v_world;
+void main() { v_world = a_position; gl_Position = u_view_proj * vec4(a_position, 1.0); })";
+const char* k_grid_fs = R"(#version 300 es
+precision highp float;
+in vec3 v_world;
+uniform vec3 u_eye, u_origin, u_fog;
+uniform mat3 u_axes;
+uniform float u_spacing;
+uniform vec2 u_fade;
+out vec4 o_color;
+float lines(vec2 uv, float spacing) {
+    vec2 g = uv / spacing;
+    vec2 w = fwidth(g);
+    vec2 d = abs(fract(g - 0.5) - 0.5) / max(w, vec2(1e-6));
+    return 1.0 - min(min(d.x, d.y), 1.0);
+}
+void main() {
+    vec3 r = v_world - u_origin;
+    vec2 uv = vec2(dot(r, u_axes[0]), dot(r, u_axes[1]));
+    vec3 c = vec3(0.80, 0.80, 0.78);
+    c = mix(c, vec3(0.62, 0.62, 0.60), lines(uv, u_spacing) * 0.6);
+    c = mix(c, vec3(0.45, 0.45, 0.44), lines(uv, u_spacing * 10.0) * 0.8);
+    float dist = length(v_world - u_eye);
+    float fade = smoothstep(u_fade.x, u_fade.y, dist);
+    o_color = vec4(mix(c, u_fog, fade), 1.0);
+})";
+
+// Blob shadows: one quad per body on the plane, multiplied into the grid (blend DST_COLOR, ZERO);
+// a_shadow = (u, v) in [−1, 1] across the quad and the darkening at its centre. One quad per body
+// costs its own area instead of every grid pixel looping over every body.
+const char* k_shadow_vs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_shadow;
+uniform mat4 u_view_proj;
+out vec3 v_shadow;
+void main() { v_shadow = a_shadow; gl_Position = u_view_proj * vec4(a_position, 1.0); })";
+const char* k_shadow_fs = R"(#version 300 es
+precision highp float;
+in vec3 v_shadow;
+out vec4 o_color;
+void main() {
+    float falloff = 1.0 - smoothstep(0.2, 1.0, length(v_shadow.xy));
+    o_color = vec4(vec3(1.0 - v_shadow.z * falloff), 1.0);
+})";
+
+Status compile(GLenum type, const char* source, GLuint& out)
+{
+    out = glCreateShader(type);
+    glShaderSource(out, 1, &source, nullptr);
+    glCompileShader(out);
+    GLint ok = 0;
+    glGetShaderiv(out, GL_COMPILE_STATUS, &ok);
+    if (ok)
+        return {};
+    char log[2048] = {};
+    glGetShaderInfoLog(out, sizeof log, nullptr, log);
+    return Error{"", "render", std::string("shader compile failed: ") + log};
+}
+
+Status link(const char* vs, const char* fs, GLuint& out)
+{
+    GLuint v = 0, f = 0;
+    Status sv = compile(GL_VERTEX_SHADER, vs, v);
+    Status sf = sv ? compile(GL_FRAGMENT_SHADER, fs, f) : Status{};
+    if (!sv || !sf) {
+        glDeleteShader(v);
+        glDeleteShader(f);
+        return !sv ? sv : sf;
+    }
+    out = glCreateProgram();
+    glAttachShader(out, v);
+    glAttachShader(out, f);
+    glLinkProgram(out);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(out, GL_LINK_STATUS, &ok);
+    if (ok)
+        return {};
+    char log[2048] = {};
+    glGetProgramInfoLog(out, sizeof log, nullptr, log);
+    return Error{"", "render", std::string("shader link failed: ") + log};
+}
+
+} // namespace
+
+Status compile_programs(Programs& p)
+{
+    if (Status s = link(k_sky_vs, k_sky_fs, p.sky); !s)
+        return s;
+    if (Status s = link(k_body_vs, k_body_fs, p.body); !s)
+        return s;
+    if (Status s = link(k_grid_vs, k_grid_fs, p.grid); !s)
+        return s;
+    if (Status s = link(k_shadow_vs, k_shadow_fs, p.shadow); !s)
+        return s;
+    p.shadow_view_proj = glGetUniformLocation(p.shadow, "u_view_proj");
+    p.sky_top = glGetUniformLocation(p.sky, "u_top");
+    p.sky_bottom = glGetUniformLocation(p.sky, "u_bottom");
+    p.model = glGetUniformLocation(p.body, "u_model");
+    p.view_proj = glGetUniformLocation(p.body, "u_view_proj");
+    p.color = glGetUniformLocation(p.body, "u_color");
+    p.eye = glGetUniformLocation(p.body, "u_eye");
+    p.key_dir = glGetUniformLocation(p.body, "u_key_dir");
+    p.fill_dir = glGetUniformLocation(p.body, "u_fill_dir");
+    p.flat = glGetUniformLocation(p.body, "u_flat");
+    p.grid_view_proj = glGetUniformLocation(p.grid, "u_view_proj");
+    p.grid_eye = glGetUniformLocation(p.grid, "u_eye");
+    p.grid_axes = glGetUniformLocation(p.grid, "u_axes");
+    p.grid_origin = glGetUniformLocation(p.grid, "u_origin");
+    p.grid_spacing = glGetUniformLocation(p.grid, "u_spacing");
+    p.grid_fade = glGetUniformLocation(p.grid, "u_fade");
+    p.grid_fog = glGetUniformLocation(p.grid, "u_fog");
+    return {};
+}
+
+void delete_programs(Programs& p)
+{
+    for (GLuint prog : {p.sky, p.body, p.grid, p.shadow})
+        if (prog != 0)
+            glDeleteProgram(prog);
+    p = Programs{};
+}
+
+} // namespace supermodal::render

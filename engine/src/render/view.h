@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// Camera matrices for the renderer: an orbit camera turned into a view-projection matrix. Internal.
+#pragma once
+
+#include "supermodal/math.h"
+#include "supermodal/scene.h"
+
+#include <array>
+
+namespace supermodal::render
+{
+
+/// Column-major 4×4 float matrix, as GL wants it.
+using Mat4 = std::array<float, 16>;
+
+/// A resolved camera: where the eye is and the matrices of a frame.
+struct View {
+    Vec3 eye{}, target{};
+    double distance = 1.0; ///< |eye − target| [m].
+    Mat4 view_proj{};
+};
+
+/// Unit axes of an orbit camera, world frame: `back` points from the target to the eye.
+struct OrbitAxes {
+    Vec3 back{}, right{}, up{};
+};
+[[nodiscard]] OrbitAxes orbit_axes(const CameraDef& camera);
+
+/// world_from_shape as a GL matrix: rotation then translation.
+[[nodiscard]] Mat4 model_matrix(const Vec3& position, const Quat& orientation);
+/// View of an orbit camera whose target and distance are set; aspect = width / height.
+[[nodiscard]] View make_view(const CameraDef& camera, double aspect, double scene_radius);
+
+} // namespace supermodal::render
