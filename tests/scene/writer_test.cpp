@@ -155,7 +155,19 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
         d.num(m.restitution, n.restitution, w + ".restitution");
         d.num(m.damping_ratio, n.damping_ratio, w + ".damping_ratio");
         d.num(m.yield_stress, n.yield_stress, w + ".yield_stress");
+        d.num(m.hardening, n.hardening, w + ".hardening");
+        d.num(m.max_plastic_strain, n.max_plastic_strain, w + ".max_plastic_strain");
     }
+    d.check(a.camera.target.has_value() == b.camera.target.has_value(), "camera.target");
+    if (a.camera.target && b.camera.target) {
+        d.num(a.camera.target->x, b.camera.target->x, "camera.target.x");
+        d.num(a.camera.target->y, b.camera.target->y, "camera.target.y");
+        d.num(a.camera.target->z, b.camera.target->z, "camera.target.z");
+    }
+    d.num(a.camera.distance, b.camera.distance, "camera.distance");
+    d.num(a.camera.yaw_deg, b.camera.yaw_deg, "camera.yaw");
+    d.num(a.camera.pitch_deg, b.camera.pitch_deg, "camera.pitch");
+    d.num(a.camera.fov_deg, b.camera.fov_deg, "camera.fov");
     d.check(a.bodies.size() == b.bodies.size(), "bodies.size");
     for (size_t i = 0; i < std::min(a.bodies.size(), b.bodies.size()); ++i)
         compare_body(d, a.bodies[i], b.bodies[i], "bodies[" + std::to_string(i) + "]");
@@ -213,9 +225,10 @@ std::string every_field_scene()
                 "max_steps_per_advance": 5, "constraint_iterations": 7,
                 "contact": { "path": "sampling", "sample_spacing": 0.03, "max_samples_per_body": 700 },
                 "threads": 2 },
+  "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },
   "materials": {
     "rubber": { "density": 1100, "young": 5e6, "poisson": 0.45, "friction": 0.9, "restitution": 0.7,
-                "damping_ratio": 0.05, "yield_stress": 3e5 },
+                "damping_ratio": 0.05, "yield_stress": 3e5, "hardening": 2e6, "max_plastic_strain": 0.04 },
     "plain": { "density": 0.1 }
   },
   "include": [ { "file": ")" +

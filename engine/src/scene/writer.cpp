@@ -62,6 +62,18 @@ Json material_json(const MaterialDef& m)
               {"restitution", m.restitution}, {"damping_ratio", m.damping_ratio}};
     if (std::isfinite(m.yield_stress))
         j["yield_stress"] = m.yield_stress;
+    if (m.hardening != 0.0)
+        j["hardening"] = m.hardening;
+    if (std::isfinite(m.max_plastic_strain))
+        j["max_plastic_strain"] = m.max_plastic_strain;
+    return j;
+}
+
+Json camera_json(const CameraDef& c)
+{
+    Json j = {{"distance", c.distance}, {"yaw", c.yaw_deg}, {"pitch", c.pitch_deg}, {"fov", c.fov_deg}};
+    if (c.target)
+        j["target"] = {c.target->x, c.target->y, c.target->z};
     return j;
 }
 
@@ -247,6 +259,7 @@ std::string scene_to_json(const Scene& scene)
     root["constraints"] = Json::array();
     for (const SceneConstraint& c : scene.constraints)
         root["constraints"].push_back(constraint_json(c));
+    root["camera"] = camera_json(scene.camera);
     std::string out;
     write_value(root, 0, out);
     out += '\n';
