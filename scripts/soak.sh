@@ -41,6 +41,7 @@ set xlabel "simulated time [s]"
 set output "$out/soak.png"
 set multiplot layout 1,2
 set ylabel "resident memory [KiB]"
+set yrange [0:*]
 plot "$out/chair_with_dummy.csv" using 1:7 with lines title "chair", "$out/pile.csv" using 1:7 with lines title "pile (100)"
 set ylabel "CPU time per step [ms]"
 plot "$out/chair_with_dummy.csv" using 1:6 with lines title "chair", "$out/pile.csv" using 1:6 with lines title "pile (100)"
