@@ -29,16 +29,6 @@ Error field_error(const char* where, const char* what)
     return Error{"", where, what};
 }
 
-modal::Lattice lattice_of(const ModalBasis& basis)
-{
-    modal::Lattice lat;
-    lat.cells = basis.cells;
-    lat.order = basis.element_order;
-    lat.min = basis.lattice_min;
-    lat.cell_size = basis.cell_size;
-    return lat;
-}
-
 /// Copies the solution into the public layout (node·3 + axis)·r + k and fills the checks.
 void store_modes(const modal::LatticeModel& model, const modal::ModeSolution& sol, ModalBasis& b)
 {
@@ -183,22 +173,11 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
 LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape)
 {
     LatticeWeights w;
-    const modal::Lattice lat = lattice_of(basis);
-    if (basis.cell_proxy.empty() || lat.cell_count() != static_cast<int>(basis.cell_proxy.size()))
-        return w;
-    std::array<int, 3> cell{};
+    const modal::Lattice lat = modal::lattice_of(basis);
     std::array<double, 3> xi{};
-    modal::locate(lat, point_shape, cell, xi);
-    const int proxy = basis.cell_proxy[lat.cell_index(cell[0], cell[1], cell[2])];
+    const int proxy = modal::locate_field(basis, lat, point_shape, xi);
     if (proxy < 0)
         return w;
-    // A cell without nodes borrows its proxy's field, extended at most one cell beyond the proxy (a
-    // merged sliver is exactly that extension).
-    const int pidx[3] = {proxy % lat.cells[0], (proxy / lat.cells[0]) % lat.cells[1],
-                         proxy / (lat.cells[0] * lat.cells[1])};
-    for (int d = 0; d < 3; ++d)
-        if (pidx[d] != cell[d])
-            xi[d] = std::clamp(xi[d] + 2.0 * (cell[d] - pidx[d]), -3.0, 3.0);
     const int per_cell = lattice_nodes_per_cell(lat.order);
     modal::shape_functions(lat.order, xi, w.weights.data(), nullptr);
     for (int a = 0; a < per_cell; ++a)

@@ -120,4 +120,31 @@ void locate(const Lattice& lattice, const Vec3& p, std::array<int, 3>& out_cell,
     }
 }
 
+Lattice lattice_of(const ModalBasis& basis)
+{
+    Lattice lat;
+    lat.cells = basis.cells;
+    lat.order = basis.element_order;
+    lat.min = basis.lattice_min;
+    lat.cell_size = basis.cell_size;
+    return lat;
+}
+
+int locate_field(const ModalBasis& basis, const Lattice& lat, const Vec3& p, std::array<double, 3>& out_xi)
+{
+    if (basis.cell_proxy.empty() || lat.cell_count() != static_cast<int>(basis.cell_proxy.size()))
+        return -1;
+    std::array<int, 3> cell{};
+    locate(lat, p, cell, out_xi);
+    const int proxy = basis.cell_proxy[lat.cell_index(cell[0], cell[1], cell[2])];
+    if (proxy < 0)
+        return -1;
+    const int pidx[3] = {proxy % lat.cells[0], (proxy / lat.cells[0]) % lat.cells[1],
+                         proxy / (lat.cells[0] * lat.cells[1])};
+    for (int d = 0; d < 3; ++d)
+        if (pidx[d] != cell[d])
+            out_xi[d] = std::clamp(out_xi[d] + 2.0 * (cell[d] - pidx[d]), -3.0, 3.0);
+    return proxy;
+}
+
 } // namespace supermodal::modal

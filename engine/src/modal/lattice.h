@@ -7,6 +7,7 @@
 #pragma once
 
 #include "supermodal/math.h"
+#include "supermodal/modal.h"
 
 #include <array>
 #include <cstdint>
@@ -71,5 +72,14 @@ struct Lattice {
 /// The cell containing p (clamped into the box) and p's natural coordinates in it (clamped to [−1, 1]).
 void locate(const Lattice& lattice, const Vec3& p, std::array<int, 3>& out_cell,
             std::array<double, 3>& out_xi);
+
+/// The lattice a basis was built on.
+[[nodiscard]] Lattice lattice_of(const ModalBasis& basis);
+
+/// The cell whose field covers p (shape frame) [m]: p's own cell or, for a cell without nodes, its
+/// proxy, with p's natural coordinates extended into the proxy (at most one cell beyond it: a merged
+/// sliver is exactly that extension). Returns the proxy cell's index, or −1 when no field covers p.
+[[nodiscard]] int locate_field(const ModalBasis& basis, const Lattice& lattice, const Vec3& p,
+                               std::array<double, 3>& out_xi);
 
 } // namespace supermodal::modal

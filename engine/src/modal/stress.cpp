@@ -24,24 +24,11 @@ struct Gradients {
 Gradients gradients_at(const ModalBasis& basis, const Vec3& p)
 {
     Gradients g;
-    Lattice lat;
-    lat.cells = basis.cells;
-    lat.order = basis.element_order;
-    lat.min = basis.lattice_min;
-    lat.cell_size = basis.cell_size;
-    if (basis.cell_proxy.empty() || lat.cell_count() != static_cast<int>(basis.cell_proxy.size()))
-        return g;
-    std::array<int, 3> cell{};
+    const Lattice lat = lattice_of(basis);
     std::array<double, 3> xi{};
-    locate(lat, p, cell, xi);
-    const int proxy = basis.cell_proxy[lat.cell_index(cell[0], cell[1], cell[2])];
+    const int proxy = locate_field(basis, lat, p, xi);
     if (proxy < 0)
         return g;
-    const int pidx[3] = {proxy % lat.cells[0], (proxy / lat.cells[0]) % lat.cells[1],
-                         proxy / (lat.cells[0] * lat.cells[1])};
-    for (int d = 0; d < 3; ++d)
-        if (pidx[d] != cell[d])
-            xi[d] = std::clamp(xi[d] + 2.0 * (cell[d] - pidx[d]), -3.0, 3.0);
     const int per_cell = lattice_nodes_per_cell(lat.order);
     double n[k_max_cell_nodes];
     std::array<double, 3> dn[k_max_cell_nodes];
