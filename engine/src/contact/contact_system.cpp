@@ -176,7 +176,11 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         needed = std::max(needed, speed * dt / (factor * thin));
     }
     const int cap = def.substep_count + def.contact.max_auto_substeps;
-    return std::min(cap, static_cast<int>(std::ceil(needed)));
+    // Compare in double first: a huge speed or a zero thickness makes `needed` overflow int (or inf),
+    // and converting that is undefined (found by the fuzzer).
+    if (!(needed < static_cast<double>(cap)))
+        return cap;
+    return static_cast<int>(std::ceil(needed));
 }
 
 void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, ContactWorld& io)
