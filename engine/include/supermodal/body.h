@@ -69,6 +69,8 @@ struct BodyDef {
     double gravity_scale = 1.0;          ///< Multiplies the world's gravity [-].
     double friction = 0.5;               ///< Coulomb coefficient [-], ≥ 0; a pair uses √(μa·μb).
     double restitution = 0.2;            ///< [-], in [0, 1]; a pair uses the larger of the two.
+    double rolling_resistance = 0.0;     ///< Rolling lever arm ℓ [m], ≥ 0: a rolling contact is resisted
+                                         ///< by a torque up to ℓ·F_n; a pair uses the larger of the two.
     ModalBodyDef modal{};                ///< Deformation; rigid unless modal.enabled.
 };
 

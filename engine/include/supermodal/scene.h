@@ -20,12 +20,13 @@ namespace supermodal
 /// A named material. Contact and modal fields are read and checked now, used by later stages.
 struct MaterialDef {
     std::string name;
-    double density = 1000.0;                                       ///< [kg/m³], > 0.
-    double young = 1e9;                                            ///< Young's modulus [Pa], > 0.
-    double poisson = 0.3;                                          ///< Poisson's ratio [-], in (−1, 0.5).
-    double friction = 0.5;                                         ///< Coulomb coefficient [-], ≥ 0.
-    double restitution = 0.2;                                      ///< [-], in [0, 1].
-    double damping_ratio = 0.01;                                   ///< Modal damping ratio [-], ≥ 0.
+    double density = 1000.0;         ///< [kg/m³], > 0.
+    double young = 1e9;              ///< Young's modulus [Pa], > 0.
+    double poisson = 0.3;            ///< Poisson's ratio [-], in (−1, 0.5).
+    double friction = 0.5;           ///< Coulomb coefficient [-], ≥ 0.
+    double restitution = 0.2;        ///< [-], in [0, 1].
+    double rolling_resistance = 0.0; ///< Rolling lever arm [m], ≥ 0 (BodyDef::rolling_resistance).
+    double damping_ratio = 0.01;     ///< Modal damping ratio [-], ≥ 0.
     double yield_stress = std::numeric_limits<double>::infinity(); ///< von Mises yield [Pa], > 0.
     double hardening = 0.0; ///< Linear hardening modulus [Pa], ≥ 0 (modal plasticity).
     double max_plastic_strain = std::numeric_limits<double>::infinity(); ///< Plastic flow limit [-], > 0.

@@ -83,6 +83,7 @@ struct Snapshot {
     std::vector<uint64_t> anchor_keys;     ///< Friction anchors: pair keys, sorted.
     std::vector<Vec3> anchor_springs;      ///< Friction anchors: tangential spring extensions [m].
     std::vector<double> anchor_twists;     ///< Friction anchors: torsional spring angles [rad].
+    std::vector<Vec3> anchor_rolls;        ///< Friction anchors: rolling spring angles [rad].
     std::vector<Entity> constraints;       ///< Constraint handles (as entities) in index order.
     std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
     uint64_t broken_constraint_count = 0;

@@ -225,6 +225,7 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
     io.torque.assign(slots, Vec3{});
     io.contacts.clear();
     io.has_twist.clear();
+    io.has_roll.clear();
     io.max_penetration = 0.0;
     const double cap_hz = k_frequency_cap_per_rate / ctx.h;
     double f_hz = def.contact.frequency_hz > 0.0 ? def.contact.frequency_hz : cap_hz;
@@ -281,6 +282,7 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         io.torque[b] += pf.torque_b;
         anchors.push_back(pf.anchor);
         io.has_twist.push_back(pf.has_twist ? 1 : 0);
+        io.has_roll.push_back(pf.has_roll ? 1 : 0);
         io.contacts.push_back(pf.info);
         io.max_penetration = std::max(io.max_penetration, pf.info.depth);
         accumulate_touch(io.events, pi, pf.info, pf.normal_force, ctx.h);
@@ -319,6 +321,10 @@ void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadP
             anchor.spring += ctx.h * (v_rel - dot(v_rel, ci.normal) * ci.normal);
             if (io.has_twist[i] != 0)
                 anchor.twist += ctx.h * dot(va.angular - vb.angular, ci.normal);
+            if (io.has_roll[i] != 0) {
+                const Vec3 w_rel = va.angular - vb.angular;
+                anchor.roll += ctx.h * (w_rel - dot(w_rel, ci.normal) * ci.normal);
+            }
         }
     });
 }

@@ -47,6 +47,7 @@ struct ContactWorld {
     std::vector<PairForce> pair_force;                  ///< Scratch: per pair, this substep's forces.
     std::vector<ContactInfo> contacts;                  ///< Derived: touching pairs of the last substep.
     std::vector<uint8_t> has_twist;     ///< Scratch: per contact, the torsional spring is active.
+    std::vector<uint8_t> has_roll;      ///< Scratch: per contact, the rolling spring is active.
     std::vector<Vec3> force, torque;    ///< Scratch: per entity index.
     double max_penetration = 0.0;       ///< Derived: deepest point of the last substep [m].
     std::vector<ZetaCache> zeta_caches; ///< Scratch: one per part.

@@ -69,6 +69,54 @@ double inverse_twist_inertia(const BodyModel& m, const Pose& p, const Vec3& n)
     return dot(nb, hadamard(m.inv_inertia_body, nb));
 }
 
+// Largest principal inverse inertia [1/(kg·m²)]: a bound over every axis of the contact plane.
+double max_inverse_inertia(const BodyModel& m)
+{
+    if (m.motion != MotionType::Dynamic)
+        return 0.0;
+    const Vec3& ii = m.inv_inertia_body;
+    return std::max({ii.x, ii.y, ii.z});
+}
+
+struct RollInput {
+    const BodyModel& ma;
+    const BodyModel& mb;
+    const Velocity& va;
+    const Velocity& vb;
+    Vec3 n;              // contact normal, b towards a
+    double normal_force; // [N]
+    double omega;        // spring rate [rad/s]
+};
+
+// Rolling resistance: a spring on the relative rolling angle (the tangential part of the relative
+// spin), clamped to ℓ·F_n with ℓ the pair's lever arm, the torque a contact patch offset by ℓ ahead of
+// the centre exerts. Sets out.torque_a/b (zero when the pair has none) and the anchor's roll.
+void add_rolling_resistance(const RollInput& in, PairAnchor& anchor, PairForce& out)
+{
+    out.torque_a = out.torque_b = {};
+    const double ell = std::max(in.ma.rolling_resistance, in.mb.rolling_resistance);
+    // The smallest inertia about any tangent axis: the spring's frequency stays at or under ω for
+    // every axis, and rolling (which also moves the centre of mass) is slower still.
+    const double inv_j = max_inverse_inertia(in.ma) + max_inverse_inertia(in.mb);
+    out.has_roll = ell > 0.0 && in.normal_force > 0.0 && inv_j > 0.0;
+    if (!out.has_roll) {
+        anchor.roll = {};
+        return;
+    }
+    const double j = 1.0 / inv_j;
+    const double k = j * in.omega * in.omega, c = 2.0 * k_tangential_damping_ratio * j * in.omega;
+    const Vec3 w_rel = in.va.angular - in.vb.angular;
+    const Vec3 w_t = w_rel - dot(w_rel, in.n) * in.n;
+    Vec3 tau = -k * anchor.roll - c * w_t;
+    const double limit = ell * in.normal_force;
+    if (length(tau) > limit) {
+        tau = tau * (limit / length(tau));
+        anchor.roll = -(tau + c * w_t) / k; // rolls on: the anchor follows
+    }
+    out.torque_a = tau;
+    out.torque_b = -1.0 * tau;
+}
+
 } // namespace
 
 double ZetaCache::get(double e)
@@ -153,6 +201,7 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     if (old_anchor != nullptr) {
         anchor.spring = old_anchor->spring - dot(old_anchor->spring, n) * n; // keep it in today's plane
         anchor.twist = old_anchor->twist;
+        anchor.roll = old_anchor->roll - dot(old_anchor->roll, n) * n;
     }
     const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
     const Vec3 v_t = v_rel - dot(v_rel, n) * n;
@@ -198,6 +247,9 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     } else {
         anchor.twist = 0.0;
     }
+    add_rolling_resistance(RollInput{ma, mb, va, vb, n, normal_force, omega_t}, anchor, out);
+    torque_a += out.torque_a;
+    torque_b += out.torque_b;
     out.touching = true;
     out.force_a = total + ft;
     out.torque_a = torque_a;

@@ -22,6 +22,7 @@ struct PairAnchor {
     uint64_t key = 0;   ///< BodyPair::key().
     Vec3 spring{};      ///< Tangential spring extension [m], world, in the contact plane.
     double twist = 0.0; ///< Torsional spring angle about the contact normal [rad].
+    Vec3 roll{};        ///< Rolling spring angle [rad], world, in the contact plane (rotation vector).
 };
 
 /// Memo of damping ratios per restitution (a 50-step bisection): a pure function, so hits and misses
@@ -46,6 +47,7 @@ struct PenaltyBody {
 struct PairForce {
     bool touching = false;     ///< The pair had points and a dynamic body.
     bool has_twist = false;    ///< The torsional spring is active (its angle advances).
+    bool has_roll = false;     ///< The rolling spring is active (its angle advances).
     Vec3 force_a{};            ///< Total force on a [N], world; b gets −force_a.
     Vec3 torque_a{};           ///< Torque on a about its centre of mass [N·m], world.
     Vec3 torque_b{};           ///< Torque on b about its centre of mass [N·m], world.

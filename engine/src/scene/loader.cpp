@@ -39,9 +39,9 @@ const std::vector<std::string_view> k_contact_keys = {"path", "sample_spacing", 
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
-const std::vector<std::string_view> k_material_keys = {"density",      "young",       "poisson",
-                                                       "friction",     "restitution", "damping_ratio",
-                                                       "yield_stress", "hardening",   "max_plastic_strain"};
+const std::vector<std::string_view> k_material_keys = {
+    "density",       "young",        "poisson",   "friction",          "restitution", "rolling_resistance",
+    "damping_ratio", "yield_stress", "hardening", "max_plastic_strain"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
 // Same bound as validate(const WorldDef&) on thread_count.
@@ -121,6 +121,7 @@ void read_material(Reader& r, const Json& value, const std::string& where, Mater
                    out_material.poisson);
     r.field_number(value, where, "friction", at_least(0.0), out_material.friction);
     r.field_number(value, where, "restitution", scene_io::closed(0.0, 1.0), out_material.restitution);
+    r.field_number(value, where, "rolling_resistance", at_least(0.0), out_material.rolling_resistance);
     r.field_number(value, where, "damping_ratio", at_least(0.0), out_material.damping_ratio);
     r.field_number(value, where, "yield_stress", above(0.0), out_material.yield_stress);
     r.field_number(value, where, "hardening", at_least(0.0), out_material.hardening);
@@ -187,7 +188,8 @@ Result<Scene> read_scene(const Json& root, const std::string& source, IncludeCon
 bool same_material(const MaterialDef& a, const MaterialDef& b)
 {
     return a.density == b.density && a.young == b.young && a.poisson == b.poisson &&
-           a.friction == b.friction && a.restitution == b.restitution && a.damping_ratio == b.damping_ratio &&
+           a.friction == b.friction && a.restitution == b.restitution &&
+           a.rolling_resistance == b.rolling_resistance && a.damping_ratio == b.damping_ratio &&
            a.yield_stress == b.yield_stress && a.hardening == b.hardening &&
            a.max_plastic_strain == b.max_plastic_strain;
 }
@@ -401,6 +403,7 @@ Result<World> build_world(const Scene& scene)
             if (m.name == scene.bodies[i].material) {
                 def.friction = m.friction;
                 def.restitution = m.restitution;
+                def.rolling_resistance = m.rolling_resistance;
             }
         // A modal basis can fail to build (too many modes for the lattice, a lattice too coarse to hold
         // the body together): say why before create_body would only refuse.

@@ -60,6 +60,8 @@ Json material_json(const MaterialDef& m)
     Json j = {{"density", m.density},         {"young", m.young},
               {"poisson", m.poisson},         {"friction", m.friction},
               {"restitution", m.restitution}, {"damping_ratio", m.damping_ratio}};
+    if (m.rolling_resistance != 0.0)
+        j["rolling_resistance"] = m.rolling_resistance;
     if (std::isfinite(m.yield_stress))
         j["yield_stress"] = m.yield_stress;
     if (m.hardening != 0.0)

@@ -102,6 +102,8 @@ Status validate(const BodyDef& def)
         return Error{"", "friction", "expected a finite friction coefficient >= 0"};
     if (!(def.restitution >= 0.0 && def.restitution <= 1.0))
         return Error{"", "restitution", "expected a restitution in [0, 1]"};
+    if (!(def.rolling_resistance >= 0.0) || !std::isfinite(def.rolling_resistance))
+        return Error{"", "rolling_resistance", "expected a finite rolling resistance >= 0 m"};
     if (!finite_def(def))
         return Error{"", "pose", "expected finite position, orientation, velocities and gravity scale"};
     if (norm(def.orientation) == 0.0)
@@ -149,6 +151,7 @@ Entity create_body(World& world, const BodyDef& def)
     set_mass_model(model, def.shape, def.density);
     model.friction = def.friction;
     model.restitution = def.restitution;
+    model.rolling_resistance = def.rolling_resistance;
     model.collider = collider_for(w, def.shape, model.mass.center_of_mass);
     const Quat q = normalized(def.orientation);
     w.reg.emplace(e, std::move(model));

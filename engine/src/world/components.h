@@ -34,6 +34,7 @@ struct BodyModel {
     double gravity_scale = 1.0;               ///< [-].
     double friction = 0.5;                    ///< Coulomb coefficient [-].
     double restitution = 0.2;                 ///< [-].
+    double rolling_resistance = 0.0;          ///< Rolling lever arm [m].
     std::shared_ptr<const Collider> collider; ///< Contact model (shared by identical shapes).
 };
 
