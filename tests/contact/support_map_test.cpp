@@ -183,3 +183,15 @@ TEST(SupportMap, SceneSettingChoosesThePath)
     ASSERT_FALSE(bad.has_value());
     EXPECT_EQ(bad.error().where, "/settings/contact/path");
 }
+
+TEST(SupportMap, SceneStiffnessSettingIsReadAndChecked)
+{
+    const sm::Result<sm::Scene> material =
+        sm::parse_scene(R"({"settings": {"contact": {"stiffness": "material"}}})", "test.json");
+    ASSERT_TRUE(material.has_value());
+    EXPECT_EQ(material->world.contact.stiffness, sm::ContactStiffness::Material);
+    const sm::Result<sm::Scene> bad =
+        sm::parse_scene(R"({"settings": {"contact": {"stiffness": "hertz"}}})", "test.json");
+    ASSERT_FALSE(bad.has_value());
+    EXPECT_EQ(bad.error().where, "/settings/contact/stiffness");
+}

@@ -223,12 +223,13 @@ std::string every_field_scene()
     return R"({
   "settings": { "dt": 0.0015, "substeps": 3, "gravity": [0.1, -9.80665, 0.2], "duration": 0.7,
                 "max_steps_per_advance": 5, "constraint_iterations": 7,
-                "contact": { "path": "sampling", "sample_spacing": 0.03, "max_samples_per_body": 700 },
+                "contact": { "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
+                             "max_samples_per_body": 700 },
                 "threads": 2 },
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },
   "materials": {
     "rubber": { "density": 1100, "young": 5e6, "poisson": 0.45, "friction": 0.9, "restitution": 0.7,
-                "damping_ratio": 0.05, "yield_stress": 3e5, "hardening": 2e6, "max_plastic_strain": 0.04 },
+                "rolling_resistance": 0.002, "damping_ratio": 0.05, "yield_stress": 3e5, "hardening": 2e6, "max_plastic_strain": 0.04 },
     "plain": { "density": 0.1 }
   },
   "include": [ { "file": ")" +

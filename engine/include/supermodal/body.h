@@ -69,9 +69,11 @@ struct BodyDef {
     double gravity_scale = 1.0;          ///< Multiplies the world's gravity [-].
     double friction = 0.5;               ///< Coulomb coefficient [-], ≥ 0; a pair uses √(μa·μb).
     double restitution = 0.2;            ///< [-], in [0, 1]; a pair uses the larger of the two.
-    double rolling_resistance = 0.0;     ///< Rolling lever arm ℓ [m], ≥ 0: a rolling contact is resisted
-                                         ///< by a torque up to ℓ·F_n; a pair uses the larger of the two.
-    ModalBodyDef modal{};                ///< Deformation; rigid unless modal.enabled.
+    double young = 1e9;   ///< Young's modulus E [Pa], > 0, for ContactStiffness::Material contact.
+    double poisson = 0.3; ///< Poisson's ratio ν [-], in (−1, 0.5), for ContactStiffness::Material.
+    double rolling_resistance = 0.0; ///< Rolling lever arm ℓ [m], ≥ 0: a rolling contact is resisted
+                                     ///< by a torque up to ℓ·F_n; a pair uses the larger of the two.
+    ModalBodyDef modal{};            ///< Deformation; rigid unless modal.enabled.
 };
 
 /// The documented starting point: a dynamic water-density sphere of radius 0.5 m at the origin.

@@ -25,6 +25,13 @@ enum class ContactPath : uint8_t {
     SupportMap, ///< libccd MPR with the analytic support map where both bodies are convex (else sampling).
 };
 
+/// What sets the normal spring's stiffness.
+enum class ContactStiffness : uint8_t {
+    Frequency, ///< k = m_eff·(2πf)² from ContactDef::frequency_hz: one setting for any mass ratio.
+    Material,  ///< Hertz: F = (4/3)·E*·√(R*·δ)·δ from the bodies' Young's moduli, Poisson ratios and
+               ///< curvature radii; clamped to the stability cap (1/(10·h)) on its tangent stiffness.
+};
+
 /// World-wide contact settings. Start from the defaults and change what differs.
 struct ContactDef {
     bool enabled = true;
@@ -40,6 +47,7 @@ struct ContactDef {
     double speculative_speed_factor = 0.5; ///< Substep the world when a body would move more than this
                                            ///< fraction of the thinnest body it may hit in one substep [-].
     int max_auto_substeps = 64;            ///< Cap on the extra substeps that rule may add [-].
+    ContactStiffness stiffness = ContactStiffness::Frequency; ///< Frequency (default) or material (Hertz).
 };
 
 /// One contact after a step: where two bodies touch, summed over the pair's points.

@@ -66,7 +66,8 @@ struct StepWarnings {
     uint64_t non_finite_bodies = 0;         ///< Bodies frozen because their state turned NaN/Inf.
     Entity last_non_finite{};               ///< The last body frozen for that reason.
     uint64_t gyroscopic_fallbacks = 0;      ///< Spins too fast for the implicit midpoint solve (see docs).
-    uint64_t contact_frequency_clamps = 0;  ///< Pairs whose requested contact frequency exceeded 1/(10 h).
+    uint64_t contact_frequency_clamps = 0;  ///< Steps whose contact frequency, and pair-substeps whose
+                                            ///< material stiffness, exceeded the cap 1/(10 h).
     uint64_t speculative_substeps = 0;      ///< Extra substeps added so fast bodies cannot tunnel.
     uint64_t modal_integrator_switches = 0; ///< Body-substeps in which central difference was unstable
                                             ///< (ω·h ≥ 2) for some modes, which were stepped exactly.

@@ -228,13 +228,16 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
     io.has_roll.clear();
     io.max_penetration = 0.0;
     const double cap_hz = k_frequency_cap_per_rate / ctx.h;
-    double f_hz = def.contact.frequency_hz > 0.0 ? def.contact.frequency_hz : cap_hz;
+    const bool material = def.contact.stiffness == ContactStiffness::Material;
+    double f_hz = def.contact.frequency_hz > 0.0 && !material ? def.contact.frequency_hz : cap_hz;
     if (f_hz > cap_hz) {
         f_hz = cap_hz;
         ++io_warnings.contact_frequency_clamps;
     }
-    const PenaltyParams params{
-        .omega = 2.0 * std::numbers::pi * f_hz, .damping_ratio = def.contact.damping_ratio, .h = ctx.h};
+    const PenaltyParams params{.omega = 2.0 * std::numbers::pi * f_hz,
+                               .material = material,
+                               .damping_ratio = def.contact.damping_ratio,
+                               .h = ctx.h};
 
     // Per pair, on any thread: reads bodies and old anchors, writes only the pair's slot.
     io.pair_force.resize(io.pairs.size());
@@ -281,6 +284,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         io.force[b] -= pf.force_a;
         io.torque[b] += pf.torque_b;
         anchors.push_back(pf.anchor);
+        if (pf.stiffness_clamped)
+            ++io_warnings.contact_frequency_clamps;
         io.has_twist.push_back(pf.has_twist ? 1 : 0);
         io.has_roll.push_back(pf.has_roll ? 1 : 0);
         io.contacts.push_back(pf.info);

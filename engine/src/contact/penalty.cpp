@@ -117,6 +117,45 @@ void add_rolling_resistance(const RollInput& in, PairAnchor& anchor, PairForce& 
     out.torque_b = -1.0 * tau;
 }
 
+struct NormalSpring {
+    double k = 0.0;       // secant stiffness: F = k·δ [N/m]
+    double omega = 0.0;   // rate of the tangent stiffness on m_eff [rad/s], for dampers and friction
+    bool clamped = false; // material stiffness cut to the cap
+};
+
+// The pair's normal spring. Frequency mode: k = m_eff·ω². Material mode (Hertz, sphere on sphere):
+// F = (4/3)·E*·√R*·δ^(3/2) with 1/E* = Σ(1 − ν²)/E and 1/R* = Σ 1/R, taken at the pair's mean depth
+// as a secant k = (4/3)·E*·√(R*·δ); its tangent, 1.5·k, sets the rate, which the explicit step
+// caps at params.omega.
+NormalSpring normal_spring(const PenaltyParams& params, const BodyModel& ma, const BodyModel& mb,
+                           double m_eff, std::span<const ContactPoint> points, double weight_sum)
+{
+    NormalSpring s;
+    if (!params.material) {
+        s.omega = params.omega;
+        s.k = m_eff * s.omega * s.omega;
+        return s;
+    }
+    double mean_depth = 0.0;
+    for (const ContactPoint& cp : points)
+        mean_depth += cp.weight * cp.depth;
+    mean_depth /= weight_sum;
+    const double e_star = 1.0 / (ma.contact_compliance + mb.contact_compliance);
+    const double curvature = ma.curvature + mb.curvature; // > 0: two planes never pair
+    s.k = (4.0 / 3.0) * e_star * std::sqrt(std::max(mean_depth, 0.0) / curvature);
+    const double k_cap = m_eff * params.omega * params.omega / 1.5;
+    // A floor keeps the friction spring (whose anchor divides by its stiffness) well-defined at a
+    // grazing touch, where Hertz gives no stiffness at all.
+    const double k_floor = 1e-6 * k_cap;
+    if (s.k > k_cap) {
+        s.k = k_cap;
+        s.clamped = true;
+    }
+    s.k = std::max(s.k, k_floor);
+    s.omega = std::sqrt(1.5 * s.k / m_eff);
+    return s;
+}
+
 } // namespace
 
 double ZetaCache::get(double e)
@@ -165,14 +204,16 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) + modal_n);
     const double zeta = params.damping_ratio >= 0.0 ? params.damping_ratio
                                                     : io_zeta.get(std::max(ma.restitution, mb.restitution));
-    const double omega = params.omega;
+    const NormalSpring spring = normal_spring(params, ma, mb, m_eff, points, weight_sum);
+    const double omega = spring.omega;
+    out.stiffness_clamped = spring.clamped;
     // The dashpot is explicit: a body feels the sum of its contacts' c·h/m_eff, and in a stack every
     // middle box has two, whose Nyquist mode (neighbours moving against each other) flips the velocity
     // every step once the sum passes 1 (measured: ten boxes, e = 0.2, c·h/m_eff = 0.92 per contact, in
     // a period-2 limit cycle at 0.19 m/s). Capped at k_max_dashpot_step for rigid pairs. Not for pairs
     // with a modal body: the modes absorb the dashpot's kick, and the cap starves them of damping
     // (measured: a soft sphere kept bouncing at 0.2–0.3 m/s for 12 s with it, rests within 3 s without).
-    const double k = m_eff * omega * omega;
+    const double k = spring.k;
     const double c_free = 2.0 * zeta * m_eff * omega;
     const double c = modal_n > 0.0 ? c_free : std::min(c_free, k_max_dashpot_step * m_eff / params.h);
 

@@ -45,20 +45,22 @@ struct PenaltyBody {
 
 /// What a pair does in one substep; written by one thread, added to the bodies in pair order.
 struct PairForce {
-    bool touching = false;     ///< The pair had points and a dynamic body.
-    bool has_twist = false;    ///< The torsional spring is active (its angle advances).
-    bool has_roll = false;     ///< The rolling spring is active (its angle advances).
-    Vec3 force_a{};            ///< Total force on a [N], world; b gets −force_a.
-    Vec3 torque_a{};           ///< Torque on a about its centre of mass [N·m], world.
-    Vec3 torque_b{};           ///< Torque on b about its centre of mass [N·m], world.
-    double normal_force = 0.0; ///< Σ of the points' normal forces [N].
-    PairAnchor anchor{};       ///< The pair's anchor after this substep's forces (before the motion).
-    ContactInfo info{};        ///< The pair's summary for world_contacts().
+    bool touching = false;          ///< The pair had points and a dynamic body.
+    bool has_twist = false;         ///< The torsional spring is active (its angle advances).
+    bool has_roll = false;          ///< The rolling spring is active (its angle advances).
+    bool stiffness_clamped = false; ///< Material stiffness exceeded the stability cap.
+    Vec3 force_a{};                 ///< Total force on a [N], world; b gets −force_a.
+    Vec3 torque_a{};                ///< Torque on a about its centre of mass [N·m], world.
+    Vec3 torque_b{};                ///< Torque on b about its centre of mass [N·m], world.
+    double normal_force = 0.0;      ///< Σ of the points' normal forces [N].
+    PairAnchor anchor{};            ///< The pair's anchor after this substep's forces (before the motion).
+    ContactInfo info{};             ///< The pair's summary for world_contacts().
 };
 
 /// Normal spring rate ω = 2π f [rad/s], damping override ζ (< 0 = from restitution).
 struct PenaltyParams {
-    double omega = 0.0;
+    double omega = 0.0;    ///< The rate (frequency mode), or the stability cap (material mode).
+    bool material = false; ///< Hertz stiffness from the bodies' materials, capped at omega.
     double damping_ratio = -1.0;
     double h = 0.0; ///< Substep [s].
 };

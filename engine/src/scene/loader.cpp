@@ -35,7 +35,9 @@ constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
     "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
     "contact", "threads"};
-const std::vector<std::string_view> k_contact_keys = {"path", "sample_spacing", "max_samples_per_body"};
+const std::vector<std::string_view> k_contact_keys = {"path", "stiffness", "sample_spacing",
+                                                      "max_samples_per_body"};
+const std::vector<std::string_view> k_contact_stiffness = {"frequency", "material"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
@@ -72,6 +74,12 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
                 size_t index = 0;
                 r.read_choice(*path, contact_where + "/path", k_contact_paths, index);
                 world.contact.path = static_cast<ContactPath>(index);
+            }
+        if (r.ok() && contact->is_object())
+            if (const Json* stiffness = r.member(*contact, "stiffness")) {
+                size_t index = 0;
+                r.read_choice(*stiffness, contact_where + "/stiffness", k_contact_stiffness, index);
+                world.contact.stiffness = static_cast<ContactStiffness>(index);
             }
         if (r.ok() && contact->is_object()) {
             r.field_number(*contact, contact_where, "sample_spacing", scene_io::at_least(0.0),
@@ -404,6 +412,8 @@ Result<World> build_world(const Scene& scene)
                 def.friction = m.friction;
                 def.restitution = m.restitution;
                 def.rolling_resistance = m.rolling_resistance;
+                def.young = m.young;
+                def.poisson = m.poisson;
             }
         // A modal basis can fail to build (too many modes for the lattice, a lattice too coarse to hold
         // the body together): say why before create_body would only refuse.

@@ -28,6 +28,7 @@ const char* const k_motion_names[] = {"static", "kinematic", "dynamic"};
 const char* const k_dynamics_names[] = {"rigid", "modal", "auto"};
 const char* const k_integrator_names[] = {"exact", "central_difference"};
 const char* const k_contact_paths[] = {"auto", "sampling", "support_map"};
+const char* const k_contact_stiffness[] = {"frequency", "material"};
 const char* const k_constraint_types[] = {"point", "distance", "weld"};
 
 /// Lines at most this long stay on one line in the output [characters].
@@ -49,6 +50,7 @@ Json settings_json(const Scene& scene)
     s["max_steps_per_advance"] = w.max_steps_per_advance;
     s["constraint_iterations"] = w.constraint_iterations;
     s["contact"] = {{"path", k_contact_paths[static_cast<size_t>(w.contact.path)]},
+                    {"stiffness", k_contact_stiffness[static_cast<size_t>(w.contact.stiffness)]},
                     {"sample_spacing", w.contact.sample_spacing},
                     {"max_samples_per_body", w.contact.max_samples_per_body}};
     s["threads"] = w.thread_count;

@@ -6,6 +6,7 @@
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace supermodal
@@ -102,6 +103,10 @@ Status validate(const BodyDef& def)
         return Error{"", "friction", "expected a finite friction coefficient >= 0"};
     if (!(def.restitution >= 0.0 && def.restitution <= 1.0))
         return Error{"", "restitution", "expected a restitution in [0, 1]"};
+    if (!(def.young > 0.0) || !std::isfinite(def.young))
+        return Error{"", "young", "expected a finite Young's modulus > 0 Pa"};
+    if (!(def.poisson > -1.0 && def.poisson < 0.5))
+        return Error{"", "poisson", "expected a Poisson's ratio in (-1, 0.5)"};
     if (!(def.rolling_resistance >= 0.0) || !std::isfinite(def.rolling_resistance))
         return Error{"", "rolling_resistance", "expected a finite rolling resistance >= 0 m"};
     if (!finite_def(def))
@@ -152,6 +157,12 @@ Entity create_body(World& world, const BodyDef& def)
     model.friction = def.friction;
     model.restitution = def.restitution;
     model.rolling_resistance = def.rolling_resistance;
+    model.contact_compliance = (1.0 - def.poisson * def.poisson) / def.young;
+    // Hertz needs the curvature at the contact; the smallest radius bounds it for convex bodies (exact
+    // for spheres, and the stiffer choice elsewhere).
+    model.curvature = def.shape.type == ShapeType::Plane
+                          ? 0.0
+                          : 1.0 / std::min({def.shape.radii.x, def.shape.radii.y, def.shape.radii.z});
     model.collider = collider_for(w, def.shape, model.mass.center_of_mass);
     const Quat q = normalized(def.orientation);
     w.reg.emplace(e, std::move(model));
