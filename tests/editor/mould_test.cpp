@@ -1,0 +1,61 @@
+// Tests for editor/mould.cpp: pressing a plastic body leaves a dent; an elastic one springs back.
+#include "session.h"
+#include "supermodal/body.h"
+#include "supermodal/modal.h"
+
+#include <gtest/gtest.h>
+
+namespace sm = supermodal;
+namespace ed = supermodal::editor;
+
+namespace
+{
+
+struct Dent {
+    double reached = 0.0; ///< Deepest while pressed [m].
+    double kept = 0.0;    ///< Left after letting go and settling [m].
+    double plastic_strain = 0.0;
+};
+
+// Settle on the floor, press the top's centre 10 mm deep for 0.3 s, let go, settle 0.7 s.
+Dent press(double yield_stress)
+{
+    ed::EditorSession s;
+    EXPECT_TRUE(s.load(std::string(SM_SOURCE_DIR) + "/tests/editor/clay.json"));
+    EXPECT_TRUE(s.set("/materials/clay/yield_stress", yield_stress));
+    s.step(300);
+    const ed::Ray down{{0.0, 0.5, 0.0}, {0.0, -1.0, 0.0}};
+    const std::optional<ed::PickHit> hit = s.pick(down);
+    EXPECT_TRUE(hit && hit->name == "clay");
+    const sm::Entity clay = hit->body;
+    const sm::Vec3 dir_shape = sm::rotate(sm::conjugate(sm::body_orientation(s.world(), clay)), {0, -1, 0});
+    const double before = s.sink_along(clay, hit->point_shape, dir_shape);
+    const sm::Status ok = s.mould(down, 0.01, 300);
+    EXPECT_TRUE(ok) << ok.error().message();
+    s.step(300 + 700);
+    Dent d;
+    d.reached = s.mould_depth_reached();
+    d.kept = s.sink_along(clay, hit->point_shape, dir_shape) - before;
+    d.plastic_strain = sm::body_plastic_state(s.world(), clay).plastic_strain;
+    return d;
+}
+
+} // namespace
+
+TEST(EditorMould, APlasticBodyKeepsTheDentAnElasticOneSpringsBack)
+{
+    const Dent clay = press(2e4);
+    const Dent elastic = press(1e12); // far above any stress here: elastic
+    // Both were pressed to about the asked 10 mm (the finger's force overshoots a little while it grows).
+    EXPECT_GT(clay.reached, 0.009);
+    EXPECT_GT(elastic.reached, 0.009);
+    EXPECT_GT(clay.plastic_strain, 0.0);
+    EXPECT_EQ(elastic.plastic_strain, 0.0);
+    // Clay keeps most of its dent; the elastic block comes back to within 1 mm (its damping settles
+    // the modes well inside the 0.7 s).
+    EXPECT_GT(clay.kept, 0.5 * clay.reached);
+    EXPECT_LT(std::abs(elastic.kept), 0.001);
+    std::printf(
+        "clay: reached %.4g m, kept %.4g m, plastic strain %.3g; elastic: reached %.4g m, kept %.4g m\n",
+        clay.reached, clay.kept, clay.plastic_strain, elastic.reached, elastic.kept);
+}
