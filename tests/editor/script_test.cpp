@@ -166,3 +166,18 @@ TEST(EditorScript, ProgramRunsTheScriptAndRefusesBadOnes)
     EXPECT_NE(err.find("renderer"), std::string::npos) << err;
 #endif
 }
+
+TEST(EditorScript, WithoutADisplayTheWindowFallsBackWithAMessage)
+{
+    const fs::path dir = temp_dir("nodisplay");
+    std::ofstream(dir / "good.json") << chair_script(1);
+    std::string err;
+    // No script: nothing to run headless, so a clear refusal.
+    EXPECT_EQ(run_editor(k_chair, err, "DISPLAY= WAYLAND_DISPLAY="), 2);
+    EXPECT_NE(err.find("no display"), std::string::npos) << err;
+    // A script runs headless, saying so.
+    EXPECT_EQ(run_editor("--script " + (dir / "good.json").string(), err, "DISPLAY= WAYLAND_DISPLAY="), 0)
+        << err;
+    EXPECT_NE(err.find("running the script headless"), std::string::npos) << err;
+    EXPECT_TRUE(fs::exists(dir / "saved.json"));
+}
