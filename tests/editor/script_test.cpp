@@ -60,7 +60,11 @@ std::string chair_script(int play_frames)
 // env: assignments put before the program (e.g. sanitizer options), or empty.
 int run_editor(const std::string& args, std::string& err, const std::string& env = "")
 {
-    const fs::path err_file = fs::path(::testing::TempDir()) / "sm_editor_stderr.txt";
+    // One file per test: ctest runs tests in parallel, each as its own process.
+    const fs::path err_file =
+        fs::path(::testing::TempDir()) /
+        ("sm_editor_stderr_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+         ".txt");
     const std::string command =
         env + " " + std::string(SM_EDITOR_EXE) + " " + args + " >/dev/null 2>" + err_file.string();
     const int status = std::system(command.c_str());
