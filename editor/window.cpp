@@ -75,7 +75,8 @@ struct ViewTexture {
     }
 };
 
-void handle_mouse(GLFWwindow* window, EditorSession& session, EditorUi& ui, bool& dragging)
+void handle_mouse(GLFWwindow* window, EditorSession& session, EditorUi& ui, bool& dragging,
+                  bool& right_was_down)
 {
     const ImGuiIO& io = ImGui::GetIO();
     double cx = 0, cy = 0;
@@ -84,7 +85,9 @@ void handle_mouse(GLFWwindow* window, EditorSession& session, EditorUi& ui, bool
     glfwGetWindowSize(window, &ww, &wh);
     const double x = cx * ui.width() / std::max(ww, 1), y = cy * ui.height() / std::max(wh, 1);
     const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool right_down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool right = right_down && !right_was_down; // one finger per press, not one per frame
+    right_was_down = right_down;
     Result<Ray> ray = screen_ray(session, ui, x, y);
     if (!ray)
         return;
@@ -153,7 +156,7 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
     ui.synthetic_mouse = false;
     auto view = std::make_unique<ViewTexture>(); // its GL objects go before the context does
     Image image;
-    bool dragging = false;
+    bool dragging = false, right_was_down = false;
     ui.before_frame = [] {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -179,7 +182,7 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
         glfwMakeContextCurrent(window); // the renderer made its own context current
         if (!image.rgba.empty())
             view->upload(image);
-        handle_mouse(window, session, ui, dragging);
+        handle_mouse(window, session, ui, dragging, right_was_down);
         const double now = glfwGetTime();
         ui.frame(now - last);
         last = now;
