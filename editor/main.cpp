@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // supermodal-editor: the Dear ImGui scene editor. Headless (--headless --script actions.json) it runs a
-// script of editor actions with no display, for CI and tests; windowed mode needs the renderer.
+// script of editor actions with no display, for CI and tests; with a display, a GLFW window.
 #include "render_hook.h"
 #include "script.h"
 #include "session.h"
 #include "ui.h"
+#include "window.h"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -38,17 +39,23 @@ int main(int argc, char** argv)
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? k_exit_ok : k_exit_bad_input;
     }
-    if (!headless) {
-        std::cerr << "supermodal-editor: the window needs the renderer, which is not linked yet; "
-                     "use --headless --script actions.json\n";
-        return k_exit_bad_input;
+    using namespace supermodal::editor;
+    if (!headless && !display_available()) {
+        // No display: a script still runs headless; without one there is nothing to do.
+        if (script.empty()) {
+            std::cerr << "supermodal-editor: no display ($DISPLAY and $WAYLAND_DISPLAY are unset), so no "
+                         "window; use --headless --script actions.json [--screenshot out.png]\n";
+            return k_exit_bad_input;
+        }
+        std::cerr << "supermodal-editor: no display ($DISPLAY and $WAYLAND_DISPLAY are unset): running "
+                     "the script headless\n";
+        headless = true;
     }
-    if (script.empty() && scene.empty()) {
+    if (headless && script.empty() && scene.empty()) {
         std::cerr << "supermodal-editor: --headless needs --script actions.json (or a scene)\n";
         return k_exit_bad_input;
     }
 
-    using namespace supermodal::editor;
     EditorSession session;
     EditorUi ui(session, size[0], size[1]);
     if (!scene.empty())
@@ -63,6 +70,14 @@ int main(int argc, char** argv)
             std::cerr << outcome.error.message() << "\n";
             return outcome.failure == ScriptFailure::CheckFailed ? k_exit_failed : k_exit_bad_input;
         }
+    }
+    if (!headless) {
+        WindowUnavailable why;
+        const int status = run_window(session, ui, why);
+        if (status != k_exit_ok)
+            std::cerr << "supermodal-editor: cannot open a window: " << why.message
+                      << "; use --headless --script actions.json\n";
+        return status;
     }
     if (!screenshot.empty()) {
         ui.frame(0.0);

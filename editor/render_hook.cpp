@@ -1,41 +1,114 @@
 // SPDX-License-Identifier: MIT
-// Screenshots through the offscreen EGL renderer (supermodal_render). The 3-D view only for now: the
-// ImGui windows are not yet drawn into the image (that needs ImGui's GLES backend in the renderer's
-// context, see docs/editor.md). Without the renderer, a clear error.
+// Screenshots through the offscreen EGL renderer (supermodal_render), with the ImGui windows drawn over
+// the 3-D view by ImGui's OpenGL ES 3 backend (compiled from libimgui-dev's backend sources) in the
+// renderer's own context. Without the renderer, a clear error.
 #include "render_hook.h"
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
 #include "supermodal/body.h"
-#include "supermodal/render.h"
+
+#include <imgui.h>
+#include <imgui_impl_opengl3.h>
 #endif
 
 namespace supermodal::editor
 {
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
-Status render_screenshot(const EditorSession& session, EditorUi&, const std::string& png_path, int width,
-                         int height)
+namespace
+{
+
+/// Points every draw command at the font texture the backend has just uploaded: the frame was drawn
+/// headless (texture 0) or for an earlier screenshot's texture. The editor draws no other images.
+void bind_font_texture(ImDrawData& data, ImTextureID font)
+{
+    for (int i = 0; i < data.CmdListsCount; ++i)
+        for (ImDrawCmd& cmd : data.CmdLists[i]->CmdBuffer)
+            cmd.TextureId = font;
+}
+
+} // namespace
+
+const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui)
+{
+    if (!ui.view_camera || ui.view_generation != session.generation()) {
+        ui.view_camera = frame_bodies(session.world(), session.scene().camera,
+                                      static_cast<double>(ui.width()) / ui.height());
+        ui.view_generation = session.generation();
+    }
+    return *ui.view_camera;
+}
+
+Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, int width, int height)
 {
     if (!session.has_world())
-        return Error{png_path, "", "cannot write a screenshot: no scene is loaded"};
+        return Error{"", "", "cannot draw the editor: no scene is loaded"};
     RenderDef def = default_render_def();
     def.width = width;
     def.height = height;
     if (Status ok = validate(def); !ok.ok())
-        return Error{png_path, "size", ok.error().what};
-    Result<Renderer> renderer = Renderer::create(def);
+        return Error{"", "size", ok.error().what};
+    Result<Renderer> renderer = Renderer::create(def); // its context is current from here on
     if (!renderer)
-        return Error{png_path, "", "cannot write a screenshot: " + renderer.error().message()};
+        return Error{"", "", "cannot draw the editor: " + renderer.error().message()};
     const World& world = session.world();
     const std::vector<Vec3> colors = scene_body_colors(session.scene());
     const std::vector<Entity> bodies = world_bodies(world);
     for (size_t i = 0; i < bodies.size() && i < colors.size(); ++i)
         renderer->set_body_color(bodies[i], colors[i]);
+
+    ImGuiContext* previous = ImGui::GetCurrentContext();
+    ImGui::SetCurrentContext(ui.context());
+    ImDrawData* data = ImGui::GetDrawData(); // the last frame's (ui.frame())
+    bool backend = false;
+    std::string backend_error;
+    const auto overlay = [&] {
+        if (data == nullptr || !data->Valid)
+            return;
+        if (!ImGui_ImplOpenGL3_Init("#version 300 es")) {
+            backend_error = "ImGui's OpenGL ES 3 backend did not start";
+            return;
+        }
+        backend = true;
+        ImGui_ImplOpenGL3_NewFrame(); // uploads the font atlas, sets io.Fonts->TexID
+        bind_font_texture(*data, ImGui::GetIO().Fonts->TexID);
+        // The UI was laid out for its display; scale it onto this image.
+        data->FramebufferScale = ImVec2(static_cast<float>(width) / data->DisplaySize.x,
+                                        static_cast<float>(height) / data->DisplaySize.y);
+        ImGui_ImplOpenGL3_RenderDrawData(data);
+    };
     Image image;
-    if (Status ok = renderer->render(world, session.scene().camera, image, PoseSource::Interpolated);
-        !ok.ok())
-        return Error{png_path, "", "cannot write a screenshot: " + ok.error().message()};
-    return write_png(png_path, image);
+    Status drawn =
+        renderer->render(world, editor_camera(session, ui), image, PoseSource::Interpolated, overlay);
+    if (backend) {
+        // Back to a headless atlas: draw commands of later frames get texture 0 again.
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui::GetIO().Fonts->SetTexID(ImTextureID{});
+    }
+    ImGui::SetCurrentContext(previous);
+    if (!backend_error.empty())
+        return Error{"", "", "cannot draw the editor: " + backend_error};
+    if (!drawn)
+        return Error{"", "", "cannot draw the editor: " + drawn.error().message()};
+    return image;
+}
+
+Status render_screenshot(const EditorSession& session, EditorUi& ui, const std::string& png_path, int width,
+                         int height)
+{
+    Result<Image> image = render_editor_image(session, ui, width, height);
+    if (!image)
+        return Error{png_path, image.error().where, "cannot write a screenshot: " + image.error().what};
+    return write_png(png_path, *image);
+}
+
+Result<Ray> screen_ray(const EditorSession& session, EditorUi& ui, double x, double y)
+{
+    if (!session.has_world())
+        return Error{"", "", "no scene is loaded"};
+    const CameraRay r =
+        camera_ray(session.world(), editor_camera(session, ui), ui.width(), ui.height(), x, y);
+    return Ray{r.origin, r.direction};
 }
 #else
 Status render_screenshot(const EditorSession&, EditorUi&, const std::string& png_path, int, int)
@@ -43,6 +116,12 @@ Status render_screenshot(const EditorSession&, EditorUi&, const std::string& png
     return Error{
         png_path, "",
         "cannot write a screenshot: this build has no renderer (configure with SUPERMODAL_RENDER=ON)"};
+}
+
+Result<Ray> screen_ray(const EditorSession&, EditorUi&, double, double)
+{
+    return Error{"", "",
+                 "rays through pixels need the renderer's camera (configure with SUPERMODAL_RENDER=ON)"};
 }
 #endif
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The one place where the editor meets the renderer (issue #8 item 1, engine/src/render). Until the
-// renderer is linked, render_screenshot() says so and fails; the lead replaces render_hook.cpp.
+// The one place where the editor meets the renderer (engine/src/render): screenshots of the 3-D view with
+// the ImGui windows drawn over it, and rays through screen pixels for the mouse.
 #pragma once
 
 #include "session.h"
@@ -8,12 +8,29 @@
 
 #include <string>
 
+#ifdef SUPERMODAL_EDITOR_HAS_RENDER
+#include "supermodal/render.h"
+#endif
+
 namespace supermodal::editor
 {
 
 /// Draws the session's world (interpolated poses, deformed modal surfaces) and the UI's last frame
-/// (ImGui::GetDrawData() of ui.context()) offscreen at width × height pixels and writes a PNG.
+/// (ImGui::GetDrawData() of ui.context(), scaled from the UI's display to the image) offscreen at
+/// width × height pixels and writes a PNG. Call ui.frame() first.
 [[nodiscard]] Status render_screenshot(const EditorSession& session, EditorUi& ui,
                                        const std::string& png_path, int width, int height);
+
+/// The world ray through pixel (x, y) of the UI's display (top-left origin, y down) [px], seen by the
+/// scene's camera as the screenshot draws it. Fails without the renderer or a loaded scene.
+[[nodiscard]] Result<Ray> screen_ray(const EditorSession& session, EditorUi& ui, double x, double y);
+
+#ifdef SUPERMODAL_EDITOR_HAS_RENDER
+/// ui.view_camera, framed (frame_bodies at the UI's aspect) when the session was loaded or reset since.
+[[nodiscard]] const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui);
+/// The screenshot's pixels (see render_screenshot).
+[[nodiscard]] Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, int width,
+                                                int height);
+#endif
 
 } // namespace supermodal::editor

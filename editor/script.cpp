@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "script.h"
 
+#include "render_hook.h"
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -24,8 +26,10 @@ const std::map<std::string, std::vector<std::string>, std::less<>> k_actions = {
     {"press", {"widget"}},
     {"select", {"body"}},
     {"pick", {"ray", "expect"}},
-    {"drag", {"ray", "to", "steps"}},
-    {"push", {"ray", "force", "steps"}},
+    {"click", {"x", "y", "expect"}},
+    {"drag", {"ray", "to", "steps", "x0", "y0", "x1", "y1"}},
+    {"push", {"ray", "force", "steps", "x", "y", "depth"}},
+    {"windows", {"show"}},
     {"save", {"file", "state"}},
 };
 /// Most steps or frames one action may ask for: a typo (1e9) should not hang CI.
@@ -109,6 +113,32 @@ Ray ray(const Json& action, const std::string& where)
     return out;
 }
 
+/// The ray through the pixel at keys (kx, ky) of the UI's display, through the scene camera.
+Ray pixel_ray(const Json& action, const std::string& where, const EditorSession& session, EditorUi& ui,
+              const char* kx, const char* ky)
+{
+    const double x = number(action, where, kx, NAN), y = number(action, where, ky, NAN);
+    if (!(x >= 0.0 && x <= ui.width()))
+        fail(where + "/" + kx, "expected a pixel in [0, " + std::to_string(ui.width()) + "], found " +
+                                   kind_of(action.value(kx, Json())));
+    if (!(y >= 0.0 && y <= ui.height()))
+        fail(where + "/" + ky, "expected a pixel in [0, " + std::to_string(ui.height()) + "], found " +
+                                   kind_of(action.value(ky, Json())));
+    Result<Ray> r = screen_ray(session, ui, x, y);
+    if (!r)
+        fail(where, r.error().what);
+    return *r;
+}
+
+/// A ray given as "ray" or as pixel keys; exactly one of the two.
+Ray ray_or_pixel(const Json& action, const std::string& where, const EditorSession& session, EditorUi& ui,
+                 const char* kx, const char* ky)
+{
+    if (action.contains("ray") == action.contains(kx))
+        fail(where, std::string("expected either \"ray\" or the pixel \"") + kx + "\", \"" + ky + "\"");
+    return action.contains("ray") ? ray(action, where) : pixel_ray(action, where, session, ui, kx, ky);
+}
+
 void check(const Status& status, const std::string& where)
 {
     if (!status)
@@ -183,8 +213,9 @@ void run_action(const Json& action, const std::string& where, const std::filesys
         if (find_body(session.world(), body).is_null())
             fail(where + "/body", "no body named \"" + body + "\"");
         ui.select_body(body);
-    } else if (verb == "pick") {
-        const std::optional<PickHit> hit = session.pick(ray(action, where));
+    } else if (verb == "pick" || verb == "click") {
+        const std::optional<PickHit> hit = session.pick(
+            verb == "pick" ? ray(action, where) : pixel_ray(action, where, session, ui, "x", "y"));
         const std::string name = hit ? hit->name : std::string();
         if (hit)
             ui.select_body(name);
@@ -195,18 +226,46 @@ void run_action(const Json& action, const std::string& where, const std::filesys
                      (hit ? "\"" + name + "\"" : std::string("nothing")),
                  ScriptFailure::CheckFailed);
     } else if (verb == "drag") {
-        check(session.drag_begin(ray(action, where)), where + "/ray");
-        session.drag_to(vec3(required(action, where, "to"), where + "/to"));
+        const Ray grab = ray_or_pixel(action, where, session, ui, "x0", "y0");
+        const std::optional<PickHit> hit = session.pick(grab);
+        check(session.drag_begin(grab), where);
+        if (action.contains("ray")) {
+            session.drag_to(vec3(required(action, where, "to"), where + "/to"));
+        } else {
+            // The mouse moves the grabbed point in the plane through it that faces the grab ray.
+            const Ray to = pixel_ray(action, where, session, ui, "x1", "y1");
+            const Vec3 n = normalized(grab.direction), d = normalized(to.direction);
+            const double facing = dot(d, n);
+            if (!(facing > 1e-6))
+                fail(where + "/x1", "the pixel's ray does not meet the drag plane");
+            session.drag_to(to.origin + (dot(hit->point - to.origin, n) / facing) * d);
+        }
         const int n = count(action, where, "steps", 1);
         session.step(n);
         log << " " << body_name(session.world(), session.drag()->body) << " for " << n << " steps";
         session.drag_end();
     } else if (verb == "push") {
-        const double force = number(action, where, "force", 0.0);
+        const Ray r = ray_or_pixel(action, where, session, ui, "x", "y");
         const int n = count(action, where, "steps", 1);
-        check(session.push(ray(action, where), force, n), where);
-        session.step(n);
-        log << " " << force << " N for " << n << " steps";
+        if (action.contains("depth") == action.contains("force"))
+            fail(where, "expected either \"force\" [N] or \"depth\" [m]");
+        if (action.contains("depth")) {
+            const double depth = number(action, where, "depth", 0.0);
+            check(session.mould(r, depth, n), where);
+            session.step(n);
+            log << " " << depth << " m deep for " << n << " steps: reached " << session.mould_depth_reached()
+                << " m";
+        } else {
+            const double force = number(action, where, "force", 0.0);
+            check(session.push(r, force, n), where);
+            session.step(n);
+            log << " " << force << " N for " << n << " steps";
+        }
+    } else if (verb == "windows") {
+        const Json& show = required(action, where, "show");
+        if (!show.is_boolean())
+            fail(where + "/show", "expected true or false, found " + kind_of(show));
+        ui.show_windows = show.get<bool>();
     } else if (verb == "save") {
         const std::filesystem::path file = base_dir / text(action, where, "file");
         std::string state = "current";

@@ -27,8 +27,10 @@ Status EditorSession::load_scene(Scene scene)
     m_world.emplace(std::move(*world));
     m_drag.reset();
     m_push.reset();
+    m_mould.reset();
     m_step_ms.clear();
     m_steps_run = 0;
+    ++m_generation;
     m_frame_backlog = 0.0;
     m_last_effect = SetEffect::Rebuilt;
     return {};
@@ -66,6 +68,7 @@ void EditorSession::apply_loads()
         if (--m_push->steps_left == 0)
             m_push.reset();
     }
+    apply_mould();
 }
 
 void EditorSession::step(int count)
@@ -130,6 +133,7 @@ Status EditorSession::rebuild_keeping_state(const Scene& edited)
     m_world.emplace(std::move(*world));
     m_drag.reset();
     m_push.reset();
+    m_mould.reset();
     return {};
 }
 

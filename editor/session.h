@@ -94,6 +94,19 @@ class EditorSession
     /// for the next `steps` steps. On a modal body the load also drives its modes (apply_force).
     Status push(const Ray& ray, double force, int steps);
 
+    /// Moulds a modal body like clay: a finger presses the surface point where the ray enters, along the
+    /// ray, until that point has sunk `depth` [m] (in the body's frame), for the next `steps` steps, then
+    /// lets go. The finger's force starts at the body's weight and grows by 5% a step while the point is
+    /// shallower than `depth`, shrinking by 10% while deeper (it stays within [10⁻³, 10⁶] weights). A
+    /// plastic material (yield_stress) keeps the dent; an elastic one springs back. Fails for a miss, a
+    /// rigid or static body, or a depth not in (0, 1] m.
+    Status mould(const Ray& ray, double depth, int steps);
+    /// How deep the last mould pressed [m]: its deepest point while pressing.
+    [[nodiscard]] double mould_depth_reached() const { return m_mould_reached; }
+    /// How far the material point at `point_shape` (rest, shape frame) [m] has moved along
+    /// `direction_shape` (unit, shape frame) since the rest shape, in the body's frame [m].
+    [[nodiscard]] double sink_along(Entity body, const Vec3& point_shape, const Vec3& direction_shape) const;
+
     /// Saves what the world shows now (poses, velocities, edited shapes) when `current_state`, else the
     /// scene as loaded and edited (its initial poses). Atomic (save_scene).
     Status save(const std::string& path, bool current_state = true) const;
@@ -104,6 +117,8 @@ class EditorSession
     [[nodiscard]] const World& world() const { return *m_world; }
     /// Mean wall time of one step over the last k_timing_window steps [ms]; 0 before any step.
     [[nodiscard]] double ms_per_step() const;
+    /// Counts loads and resets (a host re-frames its view on a change) [-].
+    [[nodiscard]] uint64_t generation() const { return m_generation; }
     /// Steps run since the last load or reset [-].
     [[nodiscard]] uint64_t steps_run() const { return m_steps_run; }
 
@@ -113,6 +128,7 @@ class EditorSession
   private:
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
+    void apply_mould();
 
     struct PushLoad {
         Entity body{};
@@ -121,7 +137,18 @@ class EditorSession
         int steps_left = 0;
     };
 
+    struct MouldFinger {
+        Entity body{};
+        Vec3 point_shape{};                   ///< Rest point pressed [m], shape frame.
+        Vec3 direction_shape{};               ///< Unit push direction, shape frame.
+        double start_sink = 0.0, depth = 0.0; ///< [m]
+        double force = 0.0, weight = 0.0;     ///< [N]
+        int steps_left = 0;
+    };
+
     Scene m_scene;
+    std::optional<MouldFinger> m_mould;
+    double m_mould_reached = 0.0;
     std::optional<World> m_world;
     bool m_playing = false;
     SetEffect m_last_effect = SetEffect::Rebuilt;
@@ -130,6 +157,7 @@ class EditorSession
     std::deque<double> m_step_ms;
     double m_frame_backlog = 0.0; ///< Real time not yet stepped [s].
     uint64_t m_steps_run = 0;
+    uint64_t m_generation = 0;
 };
 
 /// The pointer with body and constraint names replaced by their indices in `scene`

@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,24 @@ struct WidgetRect {
     std::string label; ///< As passed to ImGui ("Pause", "chair_seat", "Modal##dynamics").
     float min_x = 0, min_y = 0, max_x = 0, max_y = 0; ///< Screen rectangle [pixels].
     bool visible = false;                             ///< Not clipped away (scrolled out, collapsed).
+};
+
+/// What the Speed / accuracy window showed in its last frame, value by value and as the text drawn.
+struct SpeedAccuracyReadout {
+    bool shown = false;              ///< The window was drawn with a scene.
+    double dt = 0.0;                 ///< Step [s].
+    int substeps = 0;                ///< Substeps per step [-].
+    double ms_per_step = 0.0;        ///< EditorSession::ms_per_step() [ms].
+    double max_penetration = 0.0;    ///< world_max_penetration [m].
+    int contacts = 0;                ///< Touching pairs in the last step [-].
+    int contact_points = 0;          ///< Contact points (samples or manifold points) behind them [-].
+    std::string modal_body;          ///< The selected modal body, or empty (the modal values stay 0).
+    int modes = 0;                   ///< Its modes [-].
+    double modal_residual = 0.0;     ///< body_modal_accuracy().residual [-].
+    double truncated_fraction = 0.0; ///< body_modal_accuracy().truncated_fraction [-].
+    double eigen_residual = 0.0;     ///< Largest mode residual of its eigen solve [-].
+    double modal_energy = 0.0;       ///< body_modal_energy [J].
+    std::vector<std::string> lines;  ///< The text lines, as drawn.
 };
 
 class EditorUi
@@ -45,6 +64,12 @@ class EditorUi
     /// Sets the mouse for the next frame (a windowed host forwards its events here) [pixels].
     void set_mouse(float x, float y, bool left_down);
 
+    /// The display the UI is laid out for [px].
+    [[nodiscard]] int width() const { return m_width; }
+    [[nodiscard]] int height() const { return m_height; }
+    /// False: frames draw no window (a screenshot then shows the plain 3-D view).
+    bool show_windows = true;
+
     [[nodiscard]] const std::string& selected_body() const { return m_selected; }
     void select_body(const std::string& name) { m_selected = name; }
     /// The widgets of the last frame.
@@ -59,6 +84,13 @@ class EditorUi
     /// True: frame() feeds the mouse set by set_mouse()/press(). A platform backend that feeds ImGui's
     /// mouse itself sets this to false (press() still works: it turns it on for its three frames).
     bool synthetic_mouse = true;
+    /// The camera of the 3-D view and the mouse: the scene's camera with an absent target or distance
+    /// framed once per load or reset (editor_camera() in render_hook.h), so that the view stays put
+    /// while bodies move and a pixel means the same ray from frame to frame.
+    std::optional<CameraDef> view_camera;
+    uint64_t view_generation = 0; ///< The session generation view_camera was framed for.
+    /// The Speed / accuracy window's values in the last frame.
+    SpeedAccuracyReadout speed_accuracy;
     /// Where the Save button writes.
     std::string save_path = "scene_saved.json";
     /// Steps the Step button runs.
@@ -80,6 +112,7 @@ class EditorUi
     std::string m_selected;
     std::vector<WidgetRect> m_widgets;
     std::string m_last_error;
+    int m_width = 1, m_height = 1;
     float m_mouse_x = -1.0f, m_mouse_y = -1.0f;
     bool m_mouse_down = false;
 };

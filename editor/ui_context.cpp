@@ -25,13 +25,15 @@ std::string visible_part(const std::string& label)
 EditorUi::EditorUi(EditorSession& session, int width, int height) : m_session(session)
 {
     IMGUI_CHECKVERSION();
+    m_width = std::max(width, 1);
+    m_height = std::max(height, 1);
     ImGuiContext* previous = ImGui::GetCurrentContext();
     m_context = ImGui::CreateContext();
     ImGui::SetCurrentContext(m_context);
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr; // window layout is not saved next to whatever the working folder is
     io.LogFilename = nullptr;
-    io.DisplaySize = ImVec2(static_cast<float>(std::max(width, 1)), static_cast<float>(std::max(height, 1)));
+    io.DisplaySize = ImVec2(static_cast<float>(m_width), static_cast<float>(m_height));
     // NewFrame needs a built atlas; a renderer uploads these pixels later, headless runs never do.
     unsigned char* pixels = nullptr;
     int atlas_w = 0, atlas_h = 0;
@@ -67,10 +69,13 @@ void EditorUi::frame(double real_seconds)
     }
     m_widgets.clear();
     ImGui::NewFrame();
-    draw_scene_tree(*this);
-    draw_body_window(*this);
-    draw_controls(*this);
-    draw_speed_accuracy(*this);
+    speed_accuracy = SpeedAccuracyReadout{};
+    if (show_windows) {
+        draw_scene_tree(*this);
+        draw_body_window(*this);
+        draw_controls(*this);
+        draw_speed_accuracy(*this);
+    }
     ImGui::Render();
     if (after_render)
         after_render();

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Run controls (play, pause, step, reset, save) and the speed↔accuracy panel: the knobs that trade
 // one for the other (dt, substeps, contact path and samples, modes) next to what they cost now.
+#include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "ui.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <imgui.h>
 
 namespace supermodal::editor
@@ -20,6 +22,15 @@ bool button(EditorUi& ui, const char* label)
     const bool pressed = ImGui::Button(label);
     ui.track(label);
     return pressed;
+}
+
+/// Draws a line of text and keeps it in the readout.
+template <class... Args> void line(SpeedAccuracyReadout& r, const char* format, Args... args)
+{
+    char text[256];
+    std::snprintf(text, sizeof text, format, args...);
+    ImGui::TextUnformatted(text);
+    r.lines.emplace_back(text);
 }
 
 } // namespace
@@ -60,6 +71,7 @@ void draw_controls(EditorUi& ui)
 
 void draw_speed_accuracy(EditorUi& ui)
 {
+    ui.speed_accuracy = SpeedAccuracyReadout{};
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x - 420, display.y * 0.55f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(420, display.y * 0.45f), ImGuiCond_FirstUseEver);
@@ -70,6 +82,7 @@ void draw_speed_accuracy(EditorUi& ui)
             ImGui::End();
             return;
         }
+        ui.speed_accuracy.shown = true;
         // A copy: an applied edit replaces the session's scene and world while this window is drawn.
         const WorldDef w = s.scene().world;
         double dt = w.dt;
@@ -95,22 +108,40 @@ void draw_speed_accuracy(EditorUi& ui)
         ui.track("Max samples per body##speed");
 
         ImGui::Separator();
-        const double ms = s.ms_per_step();
-        ImGui::Text("%.3f ms/step (mean of the last %zu)", ms, EditorSession::k_timing_window);
+        SpeedAccuracyReadout& r = ui.speed_accuracy;
+        r.dt = w.dt;
+        r.substeps = w.substep_count;
+        r.ms_per_step = s.ms_per_step();
+        r.max_penetration = world_max_penetration(s.world());
+        for (const ContactInfo& c : world_contacts(s.world())) {
+            ++r.contacts;
+            r.contact_points += c.point_count;
+        }
+        line(r, "%.3f ms/step (mean of the last %zu)", r.ms_per_step, EditorSession::k_timing_window);
         // Real-time factor: simulated seconds per wall-clock second at this cost.
-        if (ms > 0.0)
-            ImGui::Text("%.2fx real time", w.dt * 1000.0 / ms);
-        ImGui::Text("max penetration %.3g m", world_max_penetration(s.world()));
+        if (r.ms_per_step > 0.0)
+            line(r, "%.2fx real time at dt = %.3g s", r.dt * 1000.0 / r.ms_per_step, r.dt);
+        line(r, "contacts %d, contact points %d", r.contacts, r.contact_points);
+        line(r, "max penetration %.3g m", r.max_penetration);
 
-        // The selected body's modes: how many, and how well the eigen solve holds (its largest residual).
+        // The selected body's modes: how many, how far the reduced solution is from the full lattice
+        // (the modal residual of its last loads) and how well the eigen solve holds.
         const Entity e = find_body(s.world(), ui.selected_body());
         const ModalBasis* basis = e.is_null() ? nullptr : body_modal_basis(s.world(), e);
         if (basis != nullptr) {
-            const auto& r = basis->diagnostics.mode_residuals;
-            const double worst = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
-            ImGui::Text("modal residual %.2e, f1 = %.4g Hz", worst,
-                        basis->frequencies_hz.empty() ? 0.0 : basis->frequencies_hz.front());
-            ImGui::Text("modal energy %.4g J", body_modal_energy(s.world(), e));
+            const ModalAccuracy accuracy = body_modal_accuracy(s.world(), e);
+            const auto& res = basis->diagnostics.mode_residuals;
+            r.modal_body = ui.selected_body();
+            r.modes = basis->mode_count;
+            r.modal_residual = accuracy.residual;
+            r.truncated_fraction = accuracy.truncated_fraction;
+            r.eigen_residual = res.empty() ? 0.0 : *std::max_element(res.begin(), res.end());
+            r.modal_energy = body_modal_energy(s.world(), e);
+            line(r, "%s: %d modes, modal residual %.3e", r.modal_body.c_str(), r.modes, r.modal_residual);
+            line(r, "truncated energy %.3e of the static response", r.truncated_fraction);
+            line(r, "eigen residual %.2e, f1 = %.4g Hz", r.eigen_residual,
+                 basis->frequencies_hz.empty() ? 0.0 : basis->frequencies_hz.front());
+            line(r, "modal energy %.4g J", r.modal_energy);
             // Last: changing the mode count rebuilds the world, and with it `basis` and `e`.
             int modes = basis->mode_count;
             if (ImGui::InputInt("Modes##speed", &modes, 1, 4, k_on_enter))

@@ -60,7 +60,11 @@ std::string chair_script(int play_frames)
 // env: assignments put before the program (e.g. sanitizer options), or empty.
 int run_editor(const std::string& args, std::string& err, const std::string& env = "")
 {
-    const fs::path err_file = fs::path(::testing::TempDir()) / "sm_editor_stderr.txt";
+    // One file per test: ctest runs tests in parallel, each as its own process.
+    const fs::path err_file =
+        fs::path(::testing::TempDir()) /
+        ("sm_editor_stderr_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+         ".txt");
     const std::string command =
         env + " " + std::string(SM_EDITOR_EXE) + " " + args + " >/dev/null 2>" + err_file.string();
     const int status = std::system(command.c_str());
@@ -165,4 +169,19 @@ TEST(EditorScript, ProgramRunsTheScriptAndRefusesBadOnes)
               2);
     EXPECT_NE(err.find("renderer"), std::string::npos) << err;
 #endif
+}
+
+TEST(EditorScript, WithoutADisplayTheWindowFallsBackWithAMessage)
+{
+    const fs::path dir = temp_dir("nodisplay");
+    std::ofstream(dir / "good.json") << chair_script(1);
+    std::string err;
+    // No script: nothing to run headless, so a clear refusal.
+    EXPECT_EQ(run_editor(k_chair, err, "DISPLAY= WAYLAND_DISPLAY="), 2);
+    EXPECT_NE(err.find("no display"), std::string::npos) << err;
+    // A script runs headless, saying so.
+    EXPECT_EQ(run_editor("--script " + (dir / "good.json").string(), err, "DISPLAY= WAYLAND_DISPLAY="), 0)
+        << err;
+    EXPECT_NE(err.find("running the script headless"), std::string::npos) << err;
+    EXPECT_TRUE(fs::exists(dir / "saved.json"));
 }

@@ -11,8 +11,11 @@
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,6 +88,11 @@ class Renderer
     /// Draws the world as seen by `camera` (absent parts framed by frame_bodies()) into `out`.
     Status render(const World& world, const CameraDef& camera, Image& out,
                   PoseSource poses = PoseSource::Current);
+    /// As render(), then `overlay()` runs with this renderer's GL ES 3.0 context current and its
+    /// framebuffer bound (viewport = the image), after the scene and before the read-back: a host draws
+    /// its UI over the frame (the editor draws its ImGui windows through ImGui's OpenGL ES 3 backend).
+    Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
+                  const std::function<void()>& overlay);
     /// Distinct shapes tessellated so far (the mesh cache's size; a shape change adds one).
     [[nodiscard]] int cached_mesh_count() const;
 
@@ -94,6 +102,23 @@ class Renderer
     explicit Renderer(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> m_impl;
 };
+
+// ---- Pixels and rays (camera_ray.cpp) ------------------------------------------------------------
+
+/// A ray from the eye: origin [m] and unit direction, world frame.
+struct CameraRay {
+    Vec3 origin{};
+    Vec3 direction{0, 0, -1};
+};
+/// The ray through pixel (x, y) of a width × height frame drawn by render() with `camera` (absent
+/// parts framed as render() frames them). Pixels count from the top-left corner, x right, y down; the
+/// centre of pixel (i, j) is (i + 0.5, j + 0.5) [px].
+[[nodiscard]] CameraRay camera_ray(const World& world, const CameraDef& camera, int width, int height,
+                                   double x, double y);
+/// Where a world point [m] lands in that frame [px] (same pixel convention), through the matrix the
+/// renderer draws with; nothing when the point is behind the eye.
+[[nodiscard]] std::optional<std::array<double, 2>>
+project_to_pixel(const World& world, const CameraDef& camera, int width, int height, const Vec3& point);
 
 /// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
 /// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1].

@@ -177,7 +177,8 @@ struct Renderer::Impl {
                    PoseSource poses);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
-    Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses);
+    Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
+                  const std::function<void()>& overlay);
 };
 
 void Renderer::Impl::draw_grid(const World& world, const render::View& view, const Vec3& normal_in,
@@ -276,7 +277,8 @@ void Renderer::Impl::draw_shadows(const World& world, const render::View& view, 
     glDepthMask(GL_TRUE);
 }
 
-Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses)
+Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
+                              const std::function<void()>& overlay)
 {
     if (Status s = context.make_current(); !s)
         return s;
@@ -349,6 +351,10 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     glBindVertexArray(0);
     out.width = def.width;
     out.height = def.height;
+    if (overlay) {
+        overlay();
+        framebuffer.bind(); // the overlay may have bound something else
+    }
     framebuffer.read(out.rgba);
     if (std::string e = render::gl_errors(); !e.empty())
         return Error{"", "render", "drawing a frame: " + e};
@@ -386,7 +392,12 @@ void Renderer::set_body_color(Entity body, const Vec3& rgb)
 }
 Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses)
 {
-    return m_impl->render(world, camera, out, poses);
+    return m_impl->render(world, camera, out, poses, {});
+}
+Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
+                        const std::function<void()>& overlay)
+{
+    return m_impl->render(world, camera, out, poses, overlay);
 }
 int Renderer::cached_mesh_count() const
 {
