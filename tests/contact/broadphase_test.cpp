@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <gtest/gtest.h>
+#include <limits>
 #include <random>
 
 namespace sm = supermodal;
@@ -85,4 +86,55 @@ TEST(Broadphase, IdenticalBoxesAreAllPaired)
     std::vector<sm::BodyPair> pairs;
     sm::find_overlapping_pairs(ps, scratch, pairs);
     EXPECT_EQ(pairs.size(), 20u * 19u / 2u);
+}
+
+TEST(Broadphase, MixedSizesFarCoordinatesAndUnboundedBoxesMatchBruteForce)
+{
+    // Boxes from 1 mm to 5 m (the big ones go to the all-against-all list), a few beyond the grid's
+    // coordinate clamp (1e9 m with 2 cm cells), an unbounded box like a plane's, and a NaN box that
+    // must pair with nothing.
+    auto ps = random_boxes(800, 11, 4.0, 0.05);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 40; ++i) {
+        auto& b = ps[static_cast<size_t>(i * 20 + 1)].box;
+        const double h = 0.0005 + 2.5 * u(rng);
+        const sm::Vec3 c = 0.5 * (b.min + b.max);
+        b = {c - sm::Vec3{h, h, h}, c + sm::Vec3{h, h, h}};
+    }
+    for (int i = 0; i < 3; ++i) {
+        const sm::Vec3 far{1e9 + i * 0.01, -1e9, 1e9};
+        ps[static_cast<size_t>(i * 7 + 3)].box = {far, far + sm::Vec3{0.05, 0.05, 0.05}};
+    }
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    ps[5].box = {{-inf, -inf, -inf}, {inf, 0.5, inf}};
+    ps[5].is_static = true;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    ps[9].box = {{nan, 0, 0}, {nan, 1, 1}};
+    sm::BroadphaseScratch scratch;
+    std::vector<sm::BodyPair> pairs;
+    sm::find_overlapping_pairs(ps, scratch, pairs);
+    EXPECT_EQ(pairs, brute_force(ps));
+    for (const sm::BodyPair& p : pairs)
+        EXPECT_TRUE(p.a.index != 10 && p.b.index != 10); // the NaN box (entity 10)
+}
+
+TEST(Broadphase, DensePileMatchesBruteForce)
+{
+    // The pile's situation: 3000 boxes of 0.1 m at 0.12 m pitch, jittered ±2 cm: neighbours within
+    // the jitter touch (1271 pairs).
+    std::vector<sm::BroadphaseProxy> ps;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+    for (uint32_t i = 0; i < 3000; ++i) {
+        const sm::Vec3 c{0.12 * (i % 15) + jitter(rng), 0.12 * ((i / 15) % 20) + jitter(rng),
+                         0.12 * (i / 300) + jitter(rng)};
+        ps.push_back(
+            {.entity = {i + 1, 1}, .box = {c - sm::Vec3{0.05, 0.05, 0.05}, c + sm::Vec3{0.05, 0.05, 0.05}}});
+    }
+    sm::BroadphaseScratch scratch;
+    std::vector<sm::BodyPair> pairs;
+    sm::find_overlapping_pairs(ps, scratch, pairs);
+    EXPECT_EQ(pairs, brute_force(ps));
+    EXPECT_GT(pairs.size(), 1000u);
 }

