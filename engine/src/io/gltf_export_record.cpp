@@ -19,6 +19,13 @@ Error bad(const std::string& where, const std::string& what)
     return Error{"", where, what};
 }
 
+std::string num(double x)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+
 bool finite(const Vec3& v)
 {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -88,9 +95,9 @@ ExportDef default_export_def()
 Status validate(const ExportDef& def)
 {
     if (!(std::isfinite(def.seconds) && def.seconds > 0.0 && def.seconds <= 3600.0))
-        return bad("seconds", "expected a number in (0, 3600] s, found " + std::to_string(def.seconds));
+        return bad("seconds", "expected a number in (0, 3600] s, found " + num(def.seconds));
     if (!(std::isfinite(def.fps) && def.fps > 0.0))
-        return bad("fps", "expected a number > 0, found " + std::to_string(def.fps));
+        return bad("fps", "expected a number > 0, found " + num(def.fps));
     if (def.tessellation < 8 || def.tessellation > 512)
         return bad("tessellation",
                    "expected an integer in [8, 512], found " + std::to_string(def.tessellation));
@@ -104,8 +111,8 @@ Result<ExportRecording> record_animation(World& world, const ExportDef& def)
     const double dt = world.settings().dt;
     // Each sample must be its own step, or two keys would share a time.
     if (def.fps * dt > 1.0 + 1e-9)
-        return bad("fps", "expected at most the step rate 1/dt = " + std::to_string(1.0 / dt) +
-                              " per s, found " + std::to_string(def.fps));
+        return bad("fps", "expected at most the step rate 1/dt = " + num(1.0 / dt) + " per s, found " +
+                              num(def.fps));
     ExportRecording rec;
     std::vector<Entity> bodies;
     for (Entity b : world_bodies(world)) {

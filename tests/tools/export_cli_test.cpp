@@ -1,0 +1,96 @@
+// Tests for tools/cmd_export.cpp: `supermodal export` run as a separate process on the ball on the
+// board, then the GLB read back by the engine's own import (assimp) and the report checked.
+#include "supermodal/mesh_io.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace sm = supermodal;
+namespace fs = std::filesystem;
+
+namespace
+{
+
+struct Outcome {
+    int status = -1;
+    std::string out;
+};
+
+/// Runs the CLI; stdout only (stderr goes to the test log), so JSON output parses as is.
+Outcome run_cli(const std::string& args)
+{
+    Outcome o;
+    FILE* pipe = ::popen((std::string(SM_CLI) + " " + args).c_str(), "r");
+    if (!pipe)
+        return o;
+    char buf[4096];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
+        o.out.append(buf, n);
+    const int raw = ::pclose(pipe);
+    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return o;
+}
+
+fs::path fresh_dir()
+{
+    const fs::path dir = fs::temp_directory_path() / "supermodal_export_cli";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+const std::string k_scene = std::string(SM_SOURCE_DIR) + "/samples/ball_on_board.json";
+
+TEST(ExportCli, WritesAGlbAndAnObjSequenceAndReportsThem)
+{
+    const fs::path dir = fresh_dir();
+    const fs::path glb = dir / "anim.glb", objs = dir / "objs";
+    const Outcome o = run_cli("export " + k_scene + " --seconds 0.2 --fps 30 --out " + glb.string() +
+                              " --obj " + objs.string() + " --json");
+    ASSERT_EQ(o.status, 0) << o.out;
+    const nlohmann::json r = nlohmann::json::parse(o.out);
+    EXPECT_EQ(r["bodies"], 4);                               // the floor plane is left out
+    EXPECT_EQ(r["frames"], 7);                               // 0, 1/30, ..., 6/30 s
+    EXPECT_EQ(r["morph_targets"], 8);                        // the board's eight modes
+    EXPECT_NEAR(r["last_time"].get<double>(), 0.2, 0.00025); // the step nearest 0.2 s (dt = 0.5 ms)
+    EXPECT_EQ(r["glb_bytes"].get<size_t>(), fs::file_size(glb));
+    size_t files = 0;
+    for (const auto& e : fs::directory_iterator(objs)) {
+        (void)e;
+        ++files;
+    }
+    EXPECT_EQ(files, 7u);
+    // The engine's importer merges the four bodies' meshes at their first poses.
+    const sm::Result<sm::ImportedMesh> m = sm::import_mesh(glb.string());
+    ASSERT_TRUE(m) << m.error().message();
+    EXPECT_EQ(m->source_meshes, 4);
+    EXPECT_EQ(m->format, "glb");
+}
+
+TEST(ExportCli, BadInputExitsWithTwoAndWritesNothing)
+{
+    const fs::path dir = fresh_dir();
+    const std::string out = (dir / "a.glb").string();
+    EXPECT_EQ(run_cli("export " + (dir / "missing.json").string() + " --out " + out).status, 2);
+    EXPECT_EQ(run_cli("export " + k_scene + " --out " + (dir / "no" / "a.glb").string()).status, 2);
+    EXPECT_EQ(run_cli("export " + k_scene).status, 2); // neither --out nor --obj
+    EXPECT_EQ(run_cli("export " + k_scene + " --fps 5000 --seconds 0.01 --out " + out).status, 2); // > 1/dt
+    EXPECT_EQ(run_cli("export " + k_scene + " --fps -1 --out " + out).status, 2);
+    EXPECT_EQ(run_cli("export " + k_scene + " --seconds 0.01 --tessellation 2 --out " + out).status, 2);
+    std::ofstream(dir / "file") << "x";
+    EXPECT_EQ(run_cli("export " + k_scene + " --seconds 0.01 --obj " + (dir / "file").string()).status, 2);
+    size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        (void)e;
+        ++entries;
+    }
+    EXPECT_EQ(entries, 1u); // only "file": no GLB, no temporary files
+}
+
+} // namespace
