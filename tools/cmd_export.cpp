@@ -76,7 +76,11 @@ int export_command(const ExportOptions& o)
     def.tessellation = o.tessellation;
     def.morph_targets = !o.no_morph;
     auto start = std::chrono::steady_clock::now();
-    const Result<ExportRecording> rec = record_animation(*world, def);
+    std::vector<ExportBodyMesh> meshes; // the scene's "mesh" files replace the tessellation
+    for (const SceneBody& b : scene->bodies)
+        if (b.render_mesh)
+            meshes.push_back({b.def.name, b.render_mesh});
+    const Result<ExportRecording> rec = record_animation(*world, def, meshes);
     const double record_seconds = seconds_since(start);
     if (!rec) {
         print_error(o.scene + ": " + rec.error().message());

@@ -15,6 +15,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 namespace sm = supermodal;
 namespace fs = std::filesystem;
@@ -245,7 +246,8 @@ TEST(GltfExportFormat, BadInputIsRefusedAndNothingIsWritten)
     bad.bodies[1].mesh.indices[0] = 1u << 30;
     EXPECT_FALSE(sm::glb_from_recording(bad));
 
-    const fs::path dir = fs::temp_directory_path() / "supermodal_export_format_test";
+    const fs::path dir =
+        fs::temp_directory_path() / ("supermodal_export_format_test_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     const sm::Status s = sm::write_glb(bad, (dir / "bad.glb").string());
@@ -261,6 +263,7 @@ TEST(GltfExportFormat, BadInputIsRefusedAndNothingIsWritten)
         ++entries;
     }
     EXPECT_EQ(entries, 1u);
+    fs::remove_all(dir);
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
+#include <unistd.h>
 
 namespace sm = supermodal;
 namespace fs = std::filesystem;
@@ -71,7 +72,9 @@ class GltfExport : public ::testing::Test
         sm::Result<sm::ExportRecording> rec = sm::record_animation(world, def);
         ASSERT_TRUE(rec) << rec.error().message();
         s_recording = new sm::ExportRecording(std::move(*rec));
-        const fs::path dir = fs::temp_directory_path() / "supermodal_export_test";
+        // One folder per process: ctest runs the tests of this suite in parallel processes.
+        const fs::path dir =
+            fs::temp_directory_path() / ("supermodal_export_test_" + std::to_string(::getpid()));
         fs::create_directories(dir);
         s_path = new std::string((dir / "ball_on_board.glb").string());
         const sm::Status s = sm::write_glb(*s_recording, *s_path);
@@ -79,6 +82,8 @@ class GltfExport : public ::testing::Test
     }
     static void TearDownTestSuite()
     {
+        if (s_path != nullptr)
+            fs::remove_all(fs::path(*s_path).parent_path());
         delete s_recording;
         delete s_path;
     }
@@ -214,7 +219,7 @@ TEST_F(GltfExport, MorphTargetsAreTheModeShapesAtTheVertices)
 
 TEST_F(GltfExport, ObjSequenceHoldsTheDeformedPosedSurface)
 {
-    const fs::path dir = fs::temp_directory_path() / "supermodal_export_test" / "objs";
+    const fs::path dir = fs::path(*s_path).parent_path() / "objs";
     fs::remove_all(dir);
     const sm::Status s = sm::write_obj_sequence(*s_recording, dir.string());
     ASSERT_TRUE(s) << s.error().message();

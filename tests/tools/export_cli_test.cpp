@@ -37,9 +37,11 @@ Outcome run_cli(const std::string& args)
     return o;
 }
 
+// One folder per test: ctest runs the tests of this file in parallel processes.
 fs::path fresh_dir()
 {
-    const fs::path dir = fs::temp_directory_path() / "supermodal_export_cli";
+    const fs::path dir = fs::temp_directory_path() / "supermodal_export_cli" /
+                         ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;

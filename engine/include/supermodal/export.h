@@ -10,6 +10,8 @@
 #include "supermodal/result.h"
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,10 +52,20 @@ struct ExportRecording {
     std::vector<ExportBody> bodies;
 };
 
+/// An artist's mesh to export for a body instead of its tessellation (SceneBody::render_mesh).
+struct ExportBodyMesh {
+    std::string body;                         ///< Body name.
+    std::shared_ptr<const TriangleMesh> mesh; ///< Vertices [m] in the body's shape frame.
+};
+
 /// Builds the meshes, then steps `world` for def.seconds, sampling at each step nearest k/fps (k = 0 is
-/// the state before the first step). Errors: invalid def, fps above the world's step rate, a world with
-/// nothing but planes, a non-finite pose or amplitude (a diverging run), all with the body named.
-[[nodiscard]] Result<ExportRecording> record_animation(World& world, const ExportDef& def);
+/// the state before the first step). A body named in `meshes` exports that mesh, its vertices deformed
+/// through the body's modal field like the tessellation's (lattice shape functions; vertices outside
+/// the lattice take the field of the nearest lattice point). Errors: invalid def, fps above the world's
+/// step rate, a world with nothing but planes, a mesh for no such body or an empty one, a non-finite
+/// pose or amplitude (a diverging run), all with the body named.
+[[nodiscard]] Result<ExportRecording> record_animation(World& world, const ExportDef& def,
+                                                       std::span<const ExportBodyMesh> meshes = {});
 
 /// The GLB bytes of a recording: one node and mesh per body, one animation "simulation" with LINEAR
 /// translation, rotation and (modal bodies) morph-target weight channels.

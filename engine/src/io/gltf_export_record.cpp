@@ -5,6 +5,7 @@
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -104,7 +105,8 @@ Status validate(const ExportDef& def)
     return {};
 }
 
-Result<ExportRecording> record_animation(World& world, const ExportDef& def)
+Result<ExportRecording> record_animation(World& world, const ExportDef& def,
+                                         std::span<const ExportBodyMesh> meshes)
 {
     if (Status s = validate(def); !s)
         return s.error();
@@ -113,6 +115,15 @@ Result<ExportRecording> record_animation(World& world, const ExportDef& def)
     if (def.fps * dt > 1.0 + 1e-9)
         return bad("fps", "expected at most the step rate 1/dt = " + num(1.0 / dt) + " per s, found " +
                               num(def.fps));
+    for (const ExportBodyMesh& m : meshes) {
+        const Entity b = find_body(world, m.body);
+        if (b.is_null())
+            return bad("body " + m.body, "a render mesh was given for a body that is not in the world");
+        if (!m.mesh || m.mesh->positions.empty() || m.mesh->indices.empty())
+            return bad("body " + m.body, "the render mesh has no triangles");
+        if (body_shape(world, b).type == ShapeType::Plane)
+            return bad("body " + m.body, "a plane has no render mesh");
+    }
     ExportRecording rec;
     std::vector<Entity> bodies;
     for (Entity b : world_bodies(world)) {
@@ -123,7 +134,9 @@ Result<ExportRecording> record_animation(World& world, const ExportDef& def)
         out.name = body_name(world, b);
         if (out.name.empty())
             out.name = "body_" + std::to_string(b.index);
-        out.mesh = tessellate(shape, def.tessellation);
+        const auto given = std::find_if(meshes.begin(), meshes.end(),
+                                        [&](const ExportBodyMesh& m) { return m.body == out.name; });
+        out.mesh = given != meshes.end() ? *given->mesh : tessellate(shape, def.tessellation);
         if (const ModalBasis* basis = body_modal_basis(world, b); basis != nullptr && def.morph_targets) {
             out.mode_displacements = mode_displacements(*basis, out.mesh);
             out.frequencies_hz = basis->frequencies_hz;
