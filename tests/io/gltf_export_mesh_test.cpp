@@ -187,6 +187,10 @@ TEST(ExportRenderMesh, BadMeshesAreErrorsAtTheBodysPointer)
         ASSERT_FALSE(r) << value.dump();
         EXPECT_EQ(r.error().where, "/bodies/3/mesh");
     }
+    const sm::Result<sm::Scene> device = load(board_scene("/dev/null"));
+    ASSERT_FALSE(device);
+    EXPECT_EQ(device.error().where, "/bodies/3/mesh");
+    EXPECT_NE(device.error().what.find("not a regular file"), std::string::npos) << device.error().what;
     nlohmann::json plane = board_scene("x.obj");
     plane["bodies"][3].erase("mesh");
     plane["bodies"][0]["mesh"] = "x.obj";

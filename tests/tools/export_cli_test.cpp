@@ -1,5 +1,6 @@
 // Tests for tools/cmd_export.cpp: `supermodal export` run as a separate process on the ball on the
 // board, then the GLB read back by the engine's own import (assimp) and the report checked.
+#include "supermodal/geometry.h"
 #include "supermodal/mesh_io.h"
 
 #include <cstdio>
@@ -73,6 +74,37 @@ TEST(ExportCli, WritesAGlbAndAnObjSequenceAndReportsThem)
     ASSERT_TRUE(m) << m.error().message();
     EXPECT_EQ(m->source_meshes, 4);
     EXPECT_EQ(m->format, "glb");
+}
+
+TEST(ExportCli, ASceneBodysRenderMeshReplacesItsTessellation)
+{
+    const fs::path dir = fresh_dir();
+    // A tetrahedron inside the ball (radius 25 mm) as the ball's render mesh.
+    std::ofstream(dir / "tet.obj") << "v 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\nv 0 0 0\n"
+                                      "f 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n";
+    std::ifstream in(k_scene);
+    nlohmann::json scene = nlohmann::json::parse(in);
+    ASSERT_EQ(scene["bodies"][4]["name"], "ball");
+    scene["bodies"][4]["mesh"] = "tet.obj";
+    std::ofstream(dir / "scene.json") << scene.dump();
+    const Outcome plain =
+        run_cli("export " + k_scene + " --seconds 0.05 --out " + (dir / "a.glb").string() + " --json");
+    const Outcome meshed = run_cli("export " + (dir / "scene.json").string() + " --seconds 0.05 --out " +
+                                   (dir / "b.glb").string() + " --json");
+    ASSERT_EQ(plain.status, 0);
+    ASSERT_EQ(meshed.status, 0);
+    // The 32-segment tessellation of the ball (radius 25 mm, ε = 1) that the tetrahedron replaces.
+    sm::ShapeDef ball = sm::default_shape_def();
+    ball.radii = {0.025, 0.025, 0.025};
+    ball.epsilon1 = ball.epsilon2 = 1.0;
+    const size_t ball_vertices = sm::tessellate(ball, 32).positions.size();
+    EXPECT_EQ(nlohmann::json::parse(meshed.out)["vertices"].get<size_t>() + ball_vertices - 4,
+              nlohmann::json::parse(plain.out)["vertices"].get<size_t>());
+    scene["bodies"][4]["mesh"] = "missing.obj";
+    std::ofstream(dir / "bad.json") << scene.dump();
+    EXPECT_EQ(run_cli("export " + (dir / "bad.json").string() + " --out " + (dir / "c.glb").string()).status,
+              2);
+    EXPECT_FALSE(fs::exists(dir / "c.glb"));
 }
 
 TEST(ExportCli, BadInputExitsWithTwoAndWritesNothing)

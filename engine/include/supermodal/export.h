@@ -77,7 +77,7 @@ struct ExportBodyMesh {
 [[nodiscard]] Status write_obj_sequence(const ExportRecording& recording, const std::string& dir);
 
 /// A body's mesh vertex at sample `frame`, deformed by its modes and posed [m], world frame: what a
-/// glTF viewer shows (in double precision).
+/// glTF viewer shows (in double precision). Needs frame < times.size() and vertex < the mesh's vertex count.
 [[nodiscard]] Vec3 exported_vertex(const ExportBody& body, size_t frame, size_t vertex);
 
 } // namespace supermodal

@@ -309,9 +309,15 @@ void load_render_meshes(Reader& r, const std::filesystem::path& base_dir, size_t
         if (b.mesh.empty())
             continue;
         const std::string path = (base_dir / b.mesh).string();
+        const std::string where = pointer_join(pointer_join("/bodies", i - first), "mesh");
+        // As for includes: a FIFO or a device (/dev/stdin) would block or never end.
+        std::error_code ec;
+        if (std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec) &&
+            !std::filesystem::is_regular_file(path, ec))
+            return r.fail(where, path + ": not a regular file");
         Result<ImportedMesh> m = import_mesh(path);
         if (!m)
-            return r.fail(pointer_join(pointer_join("/bodies", i - first), "mesh"), m.error().message());
+            return r.fail(where, m.error().message());
         b.render_mesh = std::make_shared<const TriangleMesh>(std::move(m->mesh));
     }
 }
