@@ -230,6 +230,9 @@ TEST(GltfExportFormat, BadInputIsRefusedAndNothingIsWritten)
     const sm::Result<sm::ExportRecording> too_fast = sm::record_animation(world, def);
     ASSERT_FALSE(too_fast);
     EXPECT_EQ(too_fast.error().where, "fps");
+    def.fps = 400.0;
+    def.seconds = 3600.0; // 1.44 million samples
+    EXPECT_FALSE(sm::record_animation(world, def));
 
     // Recordings that cannot be written: a NaN pose, a value past float range, mismatched sizes.
     const sm::ExportRecording good = record_board(0.05);

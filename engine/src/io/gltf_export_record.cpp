@@ -147,7 +147,11 @@ Result<ExportRecording> record_animation(World& world, const ExportDef& def,
     if (bodies.empty())
         return bad("", "nothing to export: the world has no bodies other than planes");
     // Small slack so that seconds·fps = 6.0000000001 still gives 7 samples, not 8.
-    const auto frames = static_cast<size_t>(std::floor(def.seconds * def.fps + 1e-9)) + 1;
+    const double frame_count = std::floor(def.seconds * def.fps + 1e-9) + 1.0;
+    // A million samples of even one small body is hundreds of MB: surely a typo in seconds or fps.
+    if (frame_count > 1e6)
+        return bad("fps", "seconds × fps gives " + num(frame_count) + " samples; at most 1e6");
+    const auto frames = static_cast<size_t>(frame_count);
     const double t0 = world.time();
     for (size_t k = 0; k < frames; ++k) {
         // The step nearest k/fps (half a step of slack), and never the previous sample's step.
