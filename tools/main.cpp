@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The `supermodal` command line. Exit status: 0 ok, 2 bad input, 1 internal failure.
 #include "cli_common.h"
+#include "cmd_export.h"
 #include "cmd_fit.h"
 
 #include <CLI/CLI.hpp>
@@ -65,6 +66,9 @@ int main(int argc, char** argv)
     cli::FitOptions fit;
     CLI::App* fit_cmd = cli::add_fit_command(app, fit);
 
+    cli::ExportOptions export_options;
+    CLI::App* export_cmd = cli::add_export_command(app, export_options);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -88,6 +92,8 @@ int main(int argc, char** argv)
             return cli::modes_command(modes);
         if (fit_cmd->parsed())
             return cli::fit_command(fit);
+        if (export_cmd->parsed())
+            return cli::export_command(export_options);
     } catch (const std::exception& e) {
         cli::print_error(std::string("internal error: ") + e.what());
         return cli::k_exit_internal;

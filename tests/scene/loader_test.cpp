@@ -492,8 +492,12 @@ TEST(SceneLoaderBuildWorld, CreatesBodiesInFileOrder)
 TEST(SceneLoaderBuildWorld, RefusesWhatTheLoaderWouldRefuse)
 {
     sm::Scene scene;
-    scene.bodies.push_back(
-        {.def = sm::default_body_def(), .material = "", .dynamics = sm::DynamicsType::Modal, .parent = ""});
+    scene.bodies.push_back({.def = sm::default_body_def(),
+                            .material = "",
+                            .dynamics = sm::DynamicsType::Modal,
+                            .parent = "",
+                            .mesh = "",
+                            .render_mesh = nullptr});
     sm::Result<sm::World> modal = sm::build_world(scene);
     ASSERT_FALSE(modal);
     EXPECT_EQ(modal.error().where, "/bodies/0/dynamics/type");

@@ -5,10 +5,12 @@
 
 #include "supermodal/body.h"
 #include "supermodal/constraint.h"
+#include "supermodal/geometry.h"
 #include "supermodal/result.h"
 #include "supermodal/world.h"
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,6 +45,13 @@ struct SceneBody {
     DynamicsType dynamics = DynamicsType::Rigid;
     std::string parent; ///< Parent body's name, or empty. Then def's pose and velocities are in the
                         ///< parent's frame (relative to its shape origin), resolved by build_world().
+    /// Render mesh file ("mesh"), relative to the scene file's folder (as written; an included file's
+    /// path is rebased onto the including file's folder), or empty. Not physics: exporters draw it
+    /// instead of the tessellation, deformed by the body's modes.
+    std::string mesh;
+    /// The mesh, read by load_scene/parse_scene through import_mesh (metres, body frame = shape frame),
+    /// shared between copies of the scene; null when `mesh` is empty.
+    std::shared_ptr<const TriangleMesh> render_mesh;
 };
 
 /// One constraint of a scene: its def with the bodies named (b empty = the world).

@@ -19,9 +19,9 @@ namespace
 {
 
 const std::vector<std::string_view> k_body_keys = {
-    "name",          "shape",       "material", "density",          "mass",
-    "position",      "orientation", "velocity", "angular_velocity", "motion",
-    "gravity_scale", "dynamics",    "parent"};
+    "name",        "shape",    "material",         "density", "mass",          "position",
+    "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics",
+    "parent",      "mesh"};
 // In ShapeType order, so a choice's index is its enumerator; each type's keys at the same index.
 const std::vector<std::string_view> k_shape_types = {"superquadric", "plane", "hyperquadric"};
 const std::vector<std::vector<std::string_view>> k_shape_keys = {
@@ -363,6 +363,13 @@ void read_body(Reader& r, const Json& body, const std::string& where, const Scen
         read_body_name(r, *parent, pointer_join(where, "parent"), scene, out_body.parent,
                        "no earlier body named", " (a parent is listed before its children)");
     read_dynamics(r, body, where, scene, materials, out_body);
+    // The file is read by the loader, which knows the scene's folder (load_render_meshes).
+    if (const Json* mesh = r.member(body, "mesh")) {
+        r.read_string(*mesh, pointer_join(where, "mesh"), out_body.mesh);
+        if (r.ok() && (out_body.mesh.empty() || is_plane))
+            r.fail(pointer_join(where, "mesh"),
+                   is_plane ? "a plane has no render mesh" : "expected a file name, found an empty string");
+    }
 }
 
 } // namespace

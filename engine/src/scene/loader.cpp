@@ -7,6 +7,7 @@
 #include "scene/json_reader.h"
 #include "scene/json_text.h"
 #include "supermodal/hierarchy.h"
+#include "supermodal/mesh_io.h"
 #include "supermodal/modal.h"
 #include "supermodal/scene.h"
 
@@ -203,8 +204,8 @@ bool same_material(const MaterialDef& a, const MaterialDef& b)
 }
 
 // Appends an included scene: names get the prefix, root bodies and world anchors the transform.
-void merge_included(Reader& r, const std::string& where, Scene&& part, const std::string& prefix,
-                    const Vec3& t, const Quat& q, Scene& out_scene)
+void merge_included(Reader& r, const std::string& where, Scene&& part, const std::string& part_dir,
+                    const std::string& prefix, const Vec3& t, const Quat& q, Scene& out_scene)
 {
     for (MaterialDef& m : part.materials) {
         const auto same_name = [&](const MaterialDef& o) { return o.name == m.name; };
@@ -218,6 +219,9 @@ void merge_included(Reader& r, const std::string& where, Scene&& part, const std
     }
     for (SceneBody& b : part.bodies) {
         b.def.name = prefix + b.def.name;
+        // Mesh paths are relative to the file that names them: rebase onto the including file's folder.
+        if (!b.mesh.empty())
+            b.mesh = (std::filesystem::path(part_dir) / b.mesh).lexically_normal().string();
         for (const SceneBody& o : out_scene.bodies)
             if (o.def.name == b.def.name)
                 return r.fail(pointer_join(where, "prefix"), "body name " + scene_io::quote_text(b.def.name) +
@@ -288,7 +292,8 @@ void read_include(Reader& r, const Json& item, const std::string& where, Include
     Result<Scene> part = read_scene(*json, path.string(), inner);
     if (!part)
         return r.fail(pointer_join(where, "file"), "in " + part.error().message());
-    merge_included(r, where, std::move(*part), prefix, t, normalized(q), out_scene);
+    merge_included(r, where, std::move(*part), std::filesystem::path(file).parent_path().string(), prefix, t,
+                   normalized(q), out_scene);
 }
 
 // Included files are scenes of their own; only their materials, bodies and constraints are used.
@@ -301,6 +306,28 @@ void read_includes(Reader& r, const Json& root, IncludeContext& ctx, Scene& out_
         return r.fail("/include", "expected an array, found " + scene_io::describe_value(*includes));
     for (size_t i = 0; i < includes->size() && r.ok(); ++i)
         read_include(r, (*includes)[i], pointer_join("/include", i), ctx, out_scene);
+}
+
+// Reads the "mesh" files of this file's own bodies (those from index `first` on; included ones were
+// read by their own file). A bad file is an error at the body's "mesh" pointer.
+void load_render_meshes(Reader& r, const std::filesystem::path& base_dir, size_t first, Scene& scene)
+{
+    for (size_t i = first; i < scene.bodies.size() && r.ok(); ++i) {
+        SceneBody& b = scene.bodies[i];
+        if (b.mesh.empty())
+            continue;
+        const std::string path = (base_dir / b.mesh).string();
+        const std::string where = pointer_join(pointer_join("/bodies", i - first), "mesh");
+        // As for includes: a FIFO or a device (/dev/stdin) would block or never end.
+        std::error_code ec;
+        if (std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec) &&
+            !std::filesystem::is_regular_file(path, ec))
+            return r.fail(where, path + ": not a regular file");
+        Result<ImportedMesh> m = import_mesh(path);
+        if (!m)
+            return r.fail(where, m.error().message());
+        b.render_mesh = std::make_shared<const TriangleMesh>(std::move(m->mesh));
+    }
 }
 
 Result<Scene> read_scene(const Json& root, const std::string& source, IncludeContext& ctx)
@@ -316,7 +343,9 @@ Result<Scene> read_scene(const Json& root, const std::string& source, IncludeCon
     read_materials(reader, root, scene);
     read_camera(reader, root, scene);
     read_includes(reader, root, ctx, scene);
+    const size_t included = scene.bodies.size();
     scene_io::read_bodies(reader, root, scene);
+    load_render_meshes(reader, ctx.base_dir, included, scene);
     scene_io::read_constraints(reader, root, scene);
     if (!reader.ok())
         return reader.error();

@@ -137,6 +137,8 @@ Json body_json(const Scene& scene, const SceneBody& body)
     j["angular_velocity"] = vec3(d.angular_velocity);
     j["motion"] = k_motion_names[static_cast<size_t>(d.motion)];
     j["gravity_scale"] = d.gravity_scale;
+    if (!body.mesh.empty())
+        j["mesh"] = body.mesh;
     // A body read without "dynamics" keeps the default ModalBodyDef (not its material's constants), and
     // only leaving the key out reads back that way.
     const ModalBodyDef no_dynamics{};
