@@ -132,6 +132,11 @@ TEST(FullModel, RayleighFitHitsTheRatioAtBothFrequencies)
 
 TEST(FullModel, RefusesBadStepsAndLoads)
 {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_FALSE(mo::FullModel::build(sm::test::board_def({4, 1, 1}), {nan, 0.0}));
+    sm::ModalBasisDef soft = sm::test::board_def({4, 1, 1});
+    soft.young = nan;
+    EXPECT_FALSE(mo::FullModel::build(soft, {}));
     auto full = board_model({});
     ASSERT_TRUE(full);
     EXPECT_FALSE(full->step(0.0, {}).ok());

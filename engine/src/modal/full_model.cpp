@@ -77,6 +77,8 @@ Result<std::unique_ptr<FullModel>> FullModel::build(const ModalBasisDef& def, co
     if (!(std::isfinite(damping.mass_factor) && std::isfinite(damping.stiffness_factor) &&
           damping.mass_factor >= 0.0 && damping.stiffness_factor >= 0.0))
         return fail("full model: Rayleigh factors must be finite and ≥ 0");
+    if (Status valid = validate(def); !valid.ok())
+        return valid.error();
     Result<LatticeModel> lattice = assemble_lattice_model(def);
     if (!lattice)
         return lattice.error();
