@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// Shared by the C API's translation units: the opaque structs, the per-thread error message, and the
+// boundary guard that turns every C++ exception into an sm_status.
+#pragma once
+
+#include "supermodal/supermodal.h"
+#include "supermodal/supermodal.hpp"
+
+#include <cmath>
+#include <exception>
+#include <new>
+#include <string>
+
+struct sm_world {
+    // Tells a real world from garbage or a pointer of another type cast to sm_world*; cleared on destroy.
+    static constexpr uint64_t k_tag = 0x736d5f776f726c64; // "sm_world"
+    uint64_t tag = k_tag;
+    supermodal::World world;
+};
+
+struct sm_snapshot {
+    supermodal::Snapshot snapshot;
+};
+
+namespace supermodal::capi
+{
+
+/// Records the outcome of the current call for sm_last_error(); returns `status`.
+sm_status set_error(sm_status status, const std::string& message);
+inline sm_status ok()
+{
+    return set_error(SM_OK, {});
+}
+
+/// Runs `body` (which returns an sm_status); any exception becomes SM_ERROR_INTERNAL with its text.
+template <class F> sm_status guard(const char* function, F&& body) noexcept
+{
+    try {
+        return body();
+    } catch (const std::bad_alloc&) {
+        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": out of memory");
+    } catch (const std::exception& e) {
+        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": " + e.what());
+    } catch (...) {
+        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": unknown exception");
+    }
+}
+
+inline bool live_world(const sm_world* world)
+{
+    return world != nullptr && world->tag == sm_world::k_tag;
+}
+inline Entity to_entity(sm_body body)
+{
+    return Entity{static_cast<uint32_t>(body.id & 0xffffffffu), static_cast<uint32_t>(body.id >> 32)};
+}
+inline sm_body to_body(Entity e)
+{
+    return sm_body{(static_cast<uint64_t>(e.generation) << 32) | e.index};
+}
+inline Vec3 to_vec(sm_vec3 v)
+{
+    return {v.x, v.y, v.z};
+}
+inline sm_vec3 to_c(const Vec3& v)
+{
+    return {v.x, v.y, v.z};
+}
+inline Quat to_quat(sm_quat q)
+{
+    return {q.w, q.x, q.y, q.z};
+}
+inline sm_quat to_c(const Quat& q)
+{
+    return {q.w, q.x, q.y, q.z};
+}
+inline bool finite(sm_vec3 v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+inline bool finite(sm_quat q)
+{
+    return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+
+/// SM_ERROR_INVALID_HANDLE (with the function's name) unless `world` is a live world.
+sm_status check_world(const char* function, const sm_world* world);
+/// As check_world, and `body` must be a live body of it.
+sm_status check_body(const char* function, const sm_world* world, sm_body body);
+/// SM_ERROR_NULL_ARGUMENT naming the parameter.
+sm_status null_argument(const char* function, const char* parameter);
+/// SM_ERROR_INVALID_ARGUMENT: "function: parameter: expected ...".
+sm_status invalid_argument(const char* function, const char* parameter, const char* expected);
+
+} // namespace supermodal::capi
