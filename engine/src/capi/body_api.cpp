@@ -207,163 +207,192 @@ int sm_body_is_valid(const sm_world* world, sm_body body)
 sm_status sm_body_get_name(const sm_world* world, sm_body body, char* buffer, size_t capacity,
                            size_t* out_length)
 {
-    constexpr const char* fn = "sm_body_get_name";
-    if (const sm_status s = check_body(fn, world, body); s != SM_OK)
-        return s;
-    if (const sm_status s = check_buffer(fn, buffer, capacity); s != SM_OK)
-        return s;
-    const std::string& name = body_name(world->world, to_entity(body));
-    if (out_length != nullptr)
-        *out_length = name.size();
-    if (capacity > 0) {
-        const size_t n = std::min(capacity - 1, name.size());
-        std::memcpy(buffer, name.data(), n);
-        buffer[n] = '\0';
-    }
-    return capacity > name.size() || buffer == nullptr ? ok() : too_small(fn, capacity, name.size() + 1);
+    return guard("sm_body_get_name", [&] {
+        constexpr const char* fn = "sm_body_get_name";
+        if (const sm_status s = check_body(fn, world, body); s != SM_OK)
+            return s;
+        if (const sm_status s = check_buffer(fn, buffer, capacity); s != SM_OK)
+            return s;
+        const std::string& name = body_name(world->world, to_entity(body));
+        if (out_length != nullptr)
+            *out_length = name.size();
+        if (capacity > 0) {
+            const size_t n = std::min(capacity - 1, name.size());
+            std::memcpy(buffer, name.data(), n);
+            buffer[n] = '\0';
+        }
+        return capacity > name.size() || buffer == nullptr ? ok() : too_small(fn, capacity, name.size() + 1);
+    });
 }
 
 sm_status sm_body_get_motion(const sm_world* world, sm_body body, sm_motion* out_motion)
 {
-    if (const sm_status s = check_body("sm_body_get_motion", world, body); s != SM_OK)
-        return s;
-    if (out_motion == nullptr)
-        return null_argument("sm_body_get_motion", "out_motion");
-    *out_motion = static_cast<sm_motion>(body_motion(world->world, to_entity(body)));
-    return ok();
+    return guard("sm_body_get_motion", [&] {
+        if (const sm_status s = check_body("sm_body_get_motion", world, body); s != SM_OK)
+            return s;
+        if (out_motion == nullptr)
+            return null_argument("sm_body_get_motion", "out_motion");
+        *out_motion = static_cast<sm_motion>(body_motion(world->world, to_entity(body)));
+        return ok();
+    });
 }
 
 sm_status sm_body_get_mass(const sm_world* world, sm_body body, double* out_mass)
 {
-    if (const sm_status s = check_body("sm_body_get_mass", world, body); s != SM_OK)
-        return s;
-    if (out_mass == nullptr)
-        return null_argument("sm_body_get_mass", "out_mass");
-    *out_mass = body_mass_properties(world->world, to_entity(body)).mass;
-    return ok();
+    return guard("sm_body_get_mass", [&] {
+        if (const sm_status s = check_body("sm_body_get_mass", world, body); s != SM_OK)
+            return s;
+        if (out_mass == nullptr)
+            return null_argument("sm_body_get_mass", "out_mass");
+        *out_mass = body_mass_properties(world->world, to_entity(body)).mass;
+        return ok();
+    });
 }
 
 sm_status sm_body_get_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
                            sm_quat* out_orientation)
 {
-    if (const sm_status s = check_body("sm_body_get_pose", world, body); s != SM_OK)
-        return s;
-    if (out_position == nullptr || out_orientation == nullptr)
-        return null_argument("sm_body_get_pose",
-                             out_position == nullptr ? "out_position" : "out_orientation");
-    *out_position = to_c(body_position(world->world, to_entity(body)));
-    *out_orientation = to_c(body_orientation(world->world, to_entity(body)));
-    return ok();
+    return guard("sm_body_get_pose", [&] {
+        if (const sm_status s = check_body("sm_body_get_pose", world, body); s != SM_OK)
+            return s;
+        if (out_position == nullptr || out_orientation == nullptr)
+            return null_argument("sm_body_get_pose",
+                                 out_position == nullptr ? "out_position" : "out_orientation");
+        *out_position = to_c(body_position(world->world, to_entity(body)));
+        *out_orientation = to_c(body_orientation(world->world, to_entity(body)));
+        return ok();
+    });
 }
 
 sm_status sm_body_get_interpolated_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
                                         sm_quat* out_orientation)
 {
-    constexpr const char* fn = "sm_body_get_interpolated_pose";
-    if (const sm_status s = check_body(fn, world, body); s != SM_OK)
-        return s;
-    if (out_position == nullptr || out_orientation == nullptr)
-        return null_argument(fn, out_position == nullptr ? "out_position" : "out_orientation");
-    *out_position = to_c(body_interpolated_position(world->world, to_entity(body)));
-    *out_orientation = to_c(body_interpolated_orientation(world->world, to_entity(body)));
-    return ok();
+    return guard("sm_body_get_interpolated_pose", [&] {
+        constexpr const char* fn = "sm_body_get_interpolated_pose";
+        if (const sm_status s = check_body(fn, world, body); s != SM_OK)
+            return s;
+        if (out_position == nullptr || out_orientation == nullptr)
+            return null_argument(fn, out_position == nullptr ? "out_position" : "out_orientation");
+        *out_position = to_c(body_interpolated_position(world->world, to_entity(body)));
+        *out_orientation = to_c(body_interpolated_orientation(world->world, to_entity(body)));
+        return ok();
+    });
 }
 
 sm_status sm_body_get_velocity(const sm_world* world, sm_body body, sm_vec3* out_linear, sm_vec3* out_angular)
 {
-    if (const sm_status s = check_body("sm_body_get_velocity", world, body); s != SM_OK)
-        return s;
-    if (out_linear == nullptr || out_angular == nullptr)
-        return null_argument("sm_body_get_velocity", out_linear == nullptr ? "out_linear" : "out_angular");
-    *out_linear = to_c(body_linear_velocity(world->world, to_entity(body)));
-    *out_angular = to_c(body_angular_velocity(world->world, to_entity(body)));
-    return ok();
+    return guard("sm_body_get_velocity", [&] {
+        if (const sm_status s = check_body("sm_body_get_velocity", world, body); s != SM_OK)
+            return s;
+        if (out_linear == nullptr || out_angular == nullptr)
+            return null_argument("sm_body_get_velocity",
+                                 out_linear == nullptr ? "out_linear" : "out_angular");
+        *out_linear = to_c(body_linear_velocity(world->world, to_entity(body)));
+        *out_angular = to_c(body_angular_velocity(world->world, to_entity(body)));
+        return ok();
+    });
 }
 
 sm_status sm_body_set_position(sm_world* world, sm_body body, sm_vec3 position)
 {
-    if (const sm_status s = check_body("sm_body_set_position", world, body); s != SM_OK)
-        return s;
-    if (!finite(position))
-        return invalid_argument("sm_body_set_position", "position", "expected a finite vector [m]");
-    set_body_position(world->world, to_entity(body), to_vec(position));
-    return ok();
+    return guard("sm_body_set_position", [&] {
+        if (const sm_status s = check_body("sm_body_set_position", world, body); s != SM_OK)
+            return s;
+        if (!finite(position))
+            return invalid_argument("sm_body_set_position", "position", "expected a finite vector [m]");
+        set_body_position(world->world, to_entity(body), to_vec(position));
+        return ok();
+    });
 }
 
 sm_status sm_body_set_orientation(sm_world* world, sm_body body, sm_quat orientation)
 {
-    if (const sm_status s = check_body("sm_body_set_orientation", world, body); s != SM_OK)
-        return s;
-    // norm() > 0 also refuses quaternions so small that their squared norm underflows.
-    if (!finite(orientation) || !(norm(to_quat(orientation)) > 0.0))
-        return invalid_argument("sm_body_set_orientation", "orientation",
-                                "expected a finite, non-zero quaternion");
-    set_body_orientation(world->world, to_entity(body), to_quat(orientation));
-    return ok();
+    return guard("sm_body_set_orientation", [&] {
+        if (const sm_status s = check_body("sm_body_set_orientation", world, body); s != SM_OK)
+            return s;
+        // norm() > 0 also refuses quaternions so small that their squared norm underflows.
+        if (!finite(orientation) || !(norm(to_quat(orientation)) > 0.0))
+            return invalid_argument("sm_body_set_orientation", "orientation",
+                                    "expected a finite, non-zero quaternion");
+        set_body_orientation(world->world, to_entity(body), to_quat(orientation));
+        return ok();
+    });
 }
 
 sm_status sm_body_set_velocity(sm_world* world, sm_body body, sm_vec3 linear, sm_vec3 angular)
 {
-    if (const sm_status s = check_body("sm_body_set_velocity", world, body); s != SM_OK)
-        return s;
-    if (!finite(linear) || !finite(angular))
-        return invalid_argument("sm_body_set_velocity", finite(linear) ? "angular" : "linear",
-                                "expected a finite vector");
-    set_body_linear_velocity(world->world, to_entity(body), to_vec(linear));
-    set_body_angular_velocity(world->world, to_entity(body), to_vec(angular));
-    return ok();
+    return guard("sm_body_set_velocity", [&] {
+        if (const sm_status s = check_body("sm_body_set_velocity", world, body); s != SM_OK)
+            return s;
+        if (!finite(linear) || !finite(angular))
+            return invalid_argument("sm_body_set_velocity", finite(linear) ? "angular" : "linear",
+                                    "expected a finite vector");
+        set_body_linear_velocity(world->world, to_entity(body), to_vec(linear));
+        set_body_angular_velocity(world->world, to_entity(body), to_vec(angular));
+        return ok();
+    });
 }
 
 sm_status sm_body_apply_force(sm_world* world, sm_body body, sm_vec3 force, sm_vec3 point)
 {
-    if (const sm_status s = check_body("sm_body_apply_force", world, body); s != SM_OK)
-        return s;
-    if (!finite(force) || !finite(point))
-        return invalid_argument("sm_body_apply_force", finite(force) ? "point" : "force",
-                                "expected a finite vector");
-    apply_force(world->world, to_entity(body), to_vec(force), to_vec(point));
-    return ok();
+    return guard("sm_body_apply_force", [&] {
+        if (const sm_status s = check_body("sm_body_apply_force", world, body); s != SM_OK)
+            return s;
+        if (!finite(force) || !finite(point))
+            return invalid_argument("sm_body_apply_force", finite(force) ? "point" : "force",
+                                    "expected a finite vector");
+        apply_force(world->world, to_entity(body), to_vec(force), to_vec(point));
+        return ok();
+    });
 }
 
 sm_status sm_body_apply_force_at_center(sm_world* world, sm_body body, sm_vec3 force)
 {
-    if (const sm_status s = check_body("sm_body_apply_force_at_center", world, body); s != SM_OK)
-        return s;
-    if (!finite(force))
-        return invalid_argument("sm_body_apply_force_at_center", "force", "expected a finite vector");
-    apply_force_at_center(world->world, to_entity(body), to_vec(force));
-    return ok();
+    return guard("sm_body_apply_force_at_center", [&] {
+        if (const sm_status s = check_body("sm_body_apply_force_at_center", world, body); s != SM_OK)
+            return s;
+        if (!finite(force))
+            return invalid_argument("sm_body_apply_force_at_center", "force", "expected a finite vector");
+        apply_force_at_center(world->world, to_entity(body), to_vec(force));
+        return ok();
+    });
 }
 
 sm_status sm_body_apply_torque(sm_world* world, sm_body body, sm_vec3 torque)
 {
-    if (const sm_status s = check_body("sm_body_apply_torque", world, body); s != SM_OK)
-        return s;
-    if (!finite(torque))
-        return invalid_argument("sm_body_apply_torque", "torque", "expected a finite vector");
-    apply_torque(world->world, to_entity(body), to_vec(torque));
-    return ok();
+    return guard("sm_body_apply_torque", [&] {
+        if (const sm_status s = check_body("sm_body_apply_torque", world, body); s != SM_OK)
+            return s;
+        if (!finite(torque))
+            return invalid_argument("sm_body_apply_torque", "torque", "expected a finite vector");
+        apply_torque(world->world, to_entity(body), to_vec(torque));
+        return ok();
+    });
 }
 
 sm_status sm_body_apply_impulse(sm_world* world, sm_body body, sm_vec3 impulse, sm_vec3 point)
 {
-    if (const sm_status s = check_body("sm_body_apply_impulse", world, body); s != SM_OK)
-        return s;
-    if (!finite(impulse) || !finite(point))
-        return invalid_argument("sm_body_apply_impulse", finite(impulse) ? "point" : "impulse",
-                                "expected a finite vector");
-    apply_linear_impulse(world->world, to_entity(body), to_vec(impulse), to_vec(point));
-    return ok();
+    return guard("sm_body_apply_impulse", [&] {
+        if (const sm_status s = check_body("sm_body_apply_impulse", world, body); s != SM_OK)
+            return s;
+        if (!finite(impulse) || !finite(point))
+            return invalid_argument("sm_body_apply_impulse", finite(impulse) ? "point" : "impulse",
+                                    "expected a finite vector");
+        apply_linear_impulse(world->world, to_entity(body), to_vec(impulse), to_vec(point));
+        return ok();
+    });
 }
 
 sm_status sm_body_apply_angular_impulse(sm_world* world, sm_body body, sm_vec3 impulse)
 {
-    if (const sm_status s = check_body("sm_body_apply_angular_impulse", world, body); s != SM_OK)
-        return s;
-    if (!finite(impulse))
-        return invalid_argument("sm_body_apply_angular_impulse", "impulse", "expected a finite vector");
-    apply_angular_impulse(world->world, to_entity(body), to_vec(impulse));
-    return ok();
+    return guard("sm_body_apply_angular_impulse", [&] {
+        if (const sm_status s = check_body("sm_body_apply_angular_impulse", world, body); s != SM_OK)
+            return s;
+        if (!finite(impulse))
+            return invalid_argument("sm_body_apply_angular_impulse", "impulse", "expected a finite vector");
+        apply_angular_impulse(world->world, to_entity(body), to_vec(impulse));
+        return ok();
+    });
 }
 
 } // extern "C"

@@ -32,17 +32,20 @@ inline sm_status ok()
     return set_error(SM_OK, {});
 }
 
+/// SM_ERROR_INTERNAL with "function: what"; never throws (out of memory leaves a short fixed message).
+sm_status internal_error(const char* function, const char* what) noexcept;
+
 /// Runs `body` (which returns an sm_status); any exception becomes SM_ERROR_INTERNAL with its text.
 template <class F> sm_status guard(const char* function, F&& body) noexcept
 {
     try {
         return body();
     } catch (const std::bad_alloc&) {
-        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": out of memory");
+        return internal_error(function, "out of memory");
     } catch (const std::exception& e) {
-        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": " + e.what());
+        return internal_error(function, e.what());
     } catch (...) {
-        return set_error(SM_ERROR_INTERNAL, std::string(function) + ": unknown exception");
+        return internal_error(function, "unknown exception");
     }
 }
 

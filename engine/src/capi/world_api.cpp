@@ -22,6 +22,17 @@ sm_status set_error(sm_status status, const std::string& message)
     return status;
 }
 
+sm_status internal_error(const char* function, const char* what) noexcept
+{
+    try {
+        t_last_error = std::string(function) + ": " + what;
+    } catch (...) {
+        t_last_error.clear(); // keeps its capacity: no allocation, no throw
+        t_last_error.append("out of memory", 13);
+    }
+    return SM_ERROR_INTERNAL;
+}
+
 sm_status check_world(const char* function, const sm_world* world)
 {
     if (world == nullptr)
@@ -186,12 +197,14 @@ void sm_world_destroy(sm_world* world)
 
 sm_status sm_world_get_def(const sm_world* world, sm_world_def* out_def)
 {
-    if (const sm_status s = check_world("sm_world_get_def", world); s != SM_OK)
-        return s;
-    if (out_def == nullptr)
-        return null_argument("sm_world_get_def", "out_def");
-    *out_def = to_c(world->world.settings());
-    return ok();
+    return guard("sm_world_get_def", [&] {
+        if (const sm_status s = check_world("sm_world_get_def", world); s != SM_OK)
+            return s;
+        if (out_def == nullptr)
+            return null_argument("sm_world_get_def", "out_def");
+        *out_def = to_c(world->world.settings());
+        return ok();
+    });
 }
 
 sm_status sm_world_set_def(sm_world* world, const sm_world_def* def)
@@ -223,12 +236,14 @@ sm_status sm_world_set_def(sm_world* world, const sm_world_def* def)
 
 sm_status sm_world_set_gravity(sm_world* world, sm_vec3 gravity)
 {
-    if (const sm_status s = check_world("sm_world_set_gravity", world); s != SM_OK)
-        return s;
-    if (!finite(gravity))
-        return invalid_argument("sm_world_set_gravity", "gravity", "expected a finite vector");
-    world->world.impl().def.gravity = to_vec(gravity);
-    return ok();
+    return guard("sm_world_set_gravity", [&] {
+        if (const sm_status s = check_world("sm_world_set_gravity", world); s != SM_OK)
+            return s;
+        if (!finite(gravity))
+            return invalid_argument("sm_world_set_gravity", "gravity", "expected a finite vector");
+        world->world.impl().def.gravity = to_vec(gravity);
+        return ok();
+    });
 }
 
 sm_status sm_world_step(sm_world* world)
@@ -257,32 +272,38 @@ sm_status sm_world_advance(sm_world* world, double seconds, int* out_steps)
 
 sm_status sm_world_get_interpolation_alpha(const sm_world* world, double* out_alpha)
 {
-    if (const sm_status s = check_world("sm_world_get_interpolation_alpha", world); s != SM_OK)
-        return s;
-    if (out_alpha == nullptr)
-        return null_argument("sm_world_get_interpolation_alpha", "out_alpha");
-    *out_alpha = world->world.interpolation_alpha();
-    return ok();
+    return guard("sm_world_get_interpolation_alpha", [&] {
+        if (const sm_status s = check_world("sm_world_get_interpolation_alpha", world); s != SM_OK)
+            return s;
+        if (out_alpha == nullptr)
+            return null_argument("sm_world_get_interpolation_alpha", "out_alpha");
+        *out_alpha = world->world.interpolation_alpha();
+        return ok();
+    });
 }
 
 sm_status sm_world_get_time(const sm_world* world, double* out_seconds)
 {
-    if (const sm_status s = check_world("sm_world_get_time", world); s != SM_OK)
-        return s;
-    if (out_seconds == nullptr)
-        return null_argument("sm_world_get_time", "out_seconds");
-    *out_seconds = world->world.time();
-    return ok();
+    return guard("sm_world_get_time", [&] {
+        if (const sm_status s = check_world("sm_world_get_time", world); s != SM_OK)
+            return s;
+        if (out_seconds == nullptr)
+            return null_argument("sm_world_get_time", "out_seconds");
+        *out_seconds = world->world.time();
+        return ok();
+    });
 }
 
 sm_status sm_world_get_step_count(const sm_world* world, uint64_t* out_steps)
 {
-    if (const sm_status s = check_world("sm_world_get_step_count", world); s != SM_OK)
-        return s;
-    if (out_steps == nullptr)
-        return null_argument("sm_world_get_step_count", "out_steps");
-    *out_steps = world->world.step_count();
-    return ok();
+    return guard("sm_world_get_step_count", [&] {
+        if (const sm_status s = check_world("sm_world_get_step_count", world); s != SM_OK)
+            return s;
+        if (out_steps == nullptr)
+            return null_argument("sm_world_get_step_count", "out_steps");
+        *out_steps = world->world.step_count();
+        return ok();
+    });
 }
 
 sm_status sm_world_get_state_hash(const sm_world* world, uint64_t* out_hash)
