@@ -117,11 +117,26 @@ TEST(CapiDeform, ModalBoardDeformsAsTheCppWorldSays)
     const supermodal::TriangleMesh rest_mesh =
         supermodal::tessellate(supermodal::body_shape(*cpp, cpp_board), 12);
     ASSERT_EQ(rest_mesh.positions.size(), nv);
-    for (size_t i = 0; i < nv; ++i) {
-        const supermodal::Vec3 want =
-            supermodal::body_deformed_point(*cpp, cpp_board, rest_mesh.positions[i]);
-        ASSERT_EQ(positions[i].x, want.x) << i;
-        ASSERT_EQ(positions[i].y, want.y) << i;
+    ASSERT_EQ(rest_mesh.indices.size(), ni);
+    // The rest mesh and its lattice weights are cached after the first call: a later frame must still
+    // follow the body (moved, bent differently), bit-identically to body_deformed_point.
+    for (int frame = 0; frame < 2; ++frame) {
+        for (size_t i = 0; i < nv; ++i) {
+            const supermodal::Vec3 want =
+                supermodal::body_deformed_point(*cpp, cpp_board, rest_mesh.positions[i]);
+            ASSERT_EQ(positions[i].x, want.x) << i;
+            ASSERT_EQ(positions[i].y, want.y) << i;
+            ASSERT_EQ(positions[i].z, want.z) << i;
+        }
+        for (size_t i = 0; i < ni; ++i)
+            ASSERT_EQ(indices[i], rest_mesh.indices[i]);
+        const sm_vec3 before = positions[0];
+        for (int i = 0; i < 7; ++i) {
+            ASSERT_EQ(sm_world_step(c), SM_OK);
+            cpp->step();
+        }
+        ASSERT_EQ(sm_body_get_mesh(c, board, 12, positions.data(), nv, indices.data(), ni, &nv, &ni), SM_OK);
+        EXPECT_NE(distance(before, positions[0]), 0.0) << "the vertex moved with the body";
     }
     sm_world_destroy(c);
 }

@@ -229,7 +229,8 @@ sm_status sm_body_get_deformed_points(const sm_world* world, sm_body body, const
  * *out_vertex_count and *out_index_count get the sizes; both buffers NULL with capacity 0 is a size
  * query. SM_ERROR_BUFFER_TOO_SMALL if either capacity is short (nothing written). The same resolution
  * gives the same sizes and indices every call (the rest mesh is deformed, not re-meshed). Planes have
- * no mesh (0, 0). Tessellates on each call: cost grows with resolution^2. */
+ * no mesh (0, 0). The first call per body and resolution tessellates and caches the rest mesh (memory
+ * until the body or world is destroyed); later calls only deform it, cost linear in the vertex count. */
 sm_status sm_body_get_mesh(const sm_world* world, sm_body body, int resolution, sm_vec3* positions,
                            size_t vertex_capacity, uint32_t* indices, size_t index_capacity,
                            size_t* out_vertex_count, size_t* out_index_count);

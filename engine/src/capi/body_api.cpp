@@ -147,6 +147,7 @@ sm_status sm_world_destroy_body(sm_world* world, sm_body body)
         if (const sm_status s = check_body("sm_world_destroy_body", world, body); s != SM_OK)
             return s;
         destroy_body(world->world, to_entity(body));
+        std::erase_if(world->rest_meshes, [&](const auto& entry) { return entry.first.first == body.id; });
         return ok();
     });
 }

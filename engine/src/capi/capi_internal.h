@@ -8,14 +8,31 @@
 
 #include <cmath>
 #include <exception>
+#include <map>
 #include <new>
 #include <string>
+#include <utility>
+#include <vector>
+
+namespace supermodal::capi
+{
+/// A body's rest mesh at one resolution, and for a modal body its vertices' lattice weights: what
+/// sm_body_get_mesh would otherwise recompute every frame (about half its cost, bench/capi_bench.cpp).
+struct RestMesh {
+    TriangleMesh mesh;
+    std::vector<LatticeWeights> weights; ///< Per vertex; empty for a rigid body.
+};
+} // namespace supermodal::capi
 
 struct sm_world {
     // Tells a real world from garbage or a pointer of another type cast to sm_world*; cleared on destroy.
     static constexpr uint64_t k_tag = 0x736d5f776f726c64; // "sm_world"
     uint64_t tag = k_tag;
     supermodal::World world;
+    // Keyed by (body id, resolution). Body ids are never reused and the C API cannot change a body's
+    // shape, so an entry stays right until its body is destroyed (sm_world_destroy_body drops it).
+    // Mutable: filled by the const query; a world is used from one thread at a time.
+    mutable std::map<std::pair<uint64_t, int>, supermodal::capi::RestMesh> rest_meshes;
 };
 
 struct sm_snapshot {

@@ -96,7 +96,7 @@ sm_status adopt(Result<World> built, sm_world** out_world)
 {
     if (!built)
         return set_error(SM_ERROR_SCENE, built.error().message());
-    auto world = std::make_unique<sm_world>(sm_world{sm_world::k_tag, std::move(*built)});
+    auto world = std::make_unique<sm_world>(sm_world{sm_world::k_tag, std::move(*built), {}});
     *out_world = world.release();
     return ok();
 }
@@ -159,7 +159,7 @@ sm_status sm_world_create(const sm_world_def* def, sm_world** out_world)
         const WorldDef d = from_c(*def);
         if (const Status s = validate(d); !s)
             return invalid_argument("sm_world_create", s.error().where.c_str(), s.error().what.c_str());
-        auto world = std::make_unique<sm_world>(sm_world{sm_world::k_tag, World(d)});
+        auto world = std::make_unique<sm_world>(sm_world{sm_world::k_tag, World(d), {}});
         *out_world = world.release();
         return ok();
     });
