@@ -58,7 +58,8 @@ void BM_Cpp_Step_ModalBoard(benchmark::State& st)
 }
 BENCHMARK(BM_Cpp_Step_ModalBoard)->Unit(benchmark::kMicrosecond);
 
-// One frame's deformed mesh at `resolution` segments (query + fill), world frame.
+// One frame's deformed mesh at `resolution` segments, world frame, after the first call cached the rest
+// mesh and its lattice weights.
 void BM_Capi_Mesh_ModalBoard(benchmark::State& st)
 {
     sm_body board{};
@@ -77,7 +78,7 @@ void BM_Capi_Mesh_ModalBoard(benchmark::State& st)
 }
 BENCHMARK(BM_Capi_Mesh_ModalBoard)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);
 
-// The tessellation alone (the part of the mesh query a host could cache).
+// The tessellation alone: what the first mesh query per body and resolution pays (then cached).
 void BM_Cpp_Tessellate_Board(benchmark::State& st)
 {
     supermodal::ShapeDef shape = supermodal::default_shape_def();
