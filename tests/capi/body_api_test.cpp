@@ -3,6 +3,7 @@
 #include "supermodal/supermodal.h"
 
 #include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <limits>
 #include <numbers>
@@ -146,7 +147,8 @@ TEST(CapiBody, InvalidDefsAreRefusedWithTheField)
     EXPECT_NE(std::string(sm_last_error()).find("radii"), std::string::npos) << sm_last_error();
 
     def = sm_body_def_default();
-    def.motion = static_cast<sm_motion>(7);
+    const int seven = 7; // what a C caller may store; static_cast<sm_motion>(7) would be UB in C++
+    std::memcpy(&def.motion, &seven, sizeof seven);
     EXPECT_EQ(sm_world_create_body(w, &def, &out), SM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(sm_last_error()).find("motion"), std::string::npos);
 

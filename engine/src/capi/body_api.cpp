@@ -13,17 +13,13 @@ using namespace supermodal::capi;
 namespace
 {
 
-bool valid_enum(sm_motion m)
-{
-    return m == SM_MOTION_STATIC || m == SM_MOTION_KINEMATIC || m == SM_MOTION_DYNAMIC;
-}
-
 // Every number checked here or by validate(BodyDef); the enum range here, since C lets any int through.
 sm_status to_body_def(const char* fn, const sm_body_def& d, BodyDef& def)
 {
-    if (!valid_enum(d.motion))
+    const long long motion = enum_value(d.motion), shape = enum_value(d.shape);
+    if (motion < SM_MOTION_STATIC || motion > SM_MOTION_DYNAMIC)
         return invalid_argument(fn, "motion", "expected SM_MOTION_STATIC, _KINEMATIC or _DYNAMIC");
-    if (d.shape != SM_SHAPE_SUPERQUADRIC && d.shape != SM_SHAPE_PLANE)
+    if (shape != SM_SHAPE_SUPERQUADRIC && shape != SM_SHAPE_PLANE)
         return invalid_argument(fn, "shape", "expected SM_SHAPE_SUPERQUADRIC or SM_SHAPE_PLANE");
     if (d.modal_mode_count < 0 || d.modal_mode_count > k_max_modes)
         return invalid_argument(fn, "modal_mode_count", "expected an integer in [0, 256]");

@@ -7,10 +7,12 @@
 #include "supermodal/supermodal.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <map>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -34,6 +36,10 @@ struct sm_world {
     // Mutable: filled by the const query; a world is used from one thread at a time.
     mutable std::map<std::pair<uint64_t, int>, supermodal::capi::RestMesh> rest_meshes;
 };
+
+// The C side stores enums as int (every ABI the engine targets); enum_value below relies on it.
+static_assert(sizeof(sm_status) == sizeof(int) && sizeof(sm_motion) == sizeof(int) &&
+              sizeof(sm_shape_type) == sizeof(int));
 
 struct sm_snapshot {
     supermodal::Snapshot snapshot;
@@ -101,6 +107,15 @@ inline bool finite(sm_vec3 v)
 inline bool finite(sm_quat q)
 {
     return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+
+/// The integer a C caller stored in an enum: C allows any int there, while loading an out-of-range
+/// value as the C++ enum type is undefined behaviour, so the bytes are read as the underlying type.
+template <class E> long long enum_value(const E& e)
+{
+    std::underlying_type_t<E> v;
+    std::memcpy(&v, &e, sizeof v);
+    return static_cast<long long>(v);
 }
 
 /// SM_ERROR_INVALID_HANDLE (with the function's name) unless `world` is a live world.

@@ -116,7 +116,7 @@ extern "C" {
 
 const char* sm_status_string(sm_status status)
 {
-    switch (status) {
+    switch (enum_value(status)) { // any int may come from C
     case SM_OK:
         return "SM_OK";
     case SM_ERROR_NULL_ARGUMENT:
