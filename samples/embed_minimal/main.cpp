@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The smallest host: load a scene, step it one simulated second, print each body's pose.
 #include <cstdio>
-#include <supermodal/supermodal.h>
+#include <supermodal/supermodal.hpp>
 
 int main(int argc, char** argv)
 {
