@@ -52,10 +52,7 @@ Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, in
     if (!renderer)
         return Error{"", "", "cannot draw the editor: " + renderer.error().message()};
     const World& world = session.world();
-    const std::vector<Vec3> colors = scene_body_colors(session.scene());
-    const std::vector<Entity> bodies = world_bodies(world);
-    for (size_t i = 0; i < bodies.size() && i < colors.size(); ++i)
-        renderer->set_body_color(bodies[i], colors[i]);
+    apply_scene_looks(*renderer, session.scene(), world);
 
     ImGuiContext* previous = ImGui::GetCurrentContext();
     ImGui::SetCurrentContext(ui.context());

@@ -172,10 +172,7 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         if (session.has_world()) {
-            const std::vector<Vec3> colors = scene_body_colors(session.scene());
-            const std::vector<Entity> bodies = world_bodies(session.world());
-            for (size_t i = 0; i < bodies.size() && i < colors.size(); ++i)
-                renderer->set_body_color(bodies[i], colors[i]);
+            apply_scene_looks(*renderer, session.scene(), session.world());
             ui.report(renderer->render(session.world(), editor_camera(session, ui), image,
                                        PoseSource::Interpolated));
         }

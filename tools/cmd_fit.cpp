@@ -40,6 +40,25 @@ nlohmann::json report_json(const FitResult& f, const std::string& name)
             {"starts", f.starts}, {"acceptable", f.acceptable}};
 }
 
+// The mesh in the fitted body's shape frame, p_shape = R⁻¹(p − position), as OBJ text (positions and
+// triangles; normals are rebuilt from the faces by whoever reads it).
+std::string mesh_in_body_frame_obj(const TriangleMesh& mesh, const FitResult& f)
+{
+    std::string out = "# mesh in the fitted superquadric's shape frame [m], written by supermodal fit\n";
+    char line[128];
+    for (const Vec3& p : mesh.positions) {
+        const Vec3 q = inv_rotate(f.orientation, p - f.position);
+        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", q.x, q.y, q.z);
+        out += line;
+    }
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        std::snprintf(line, sizeof line, "f %u %u %u\n", mesh.indices[i] + 1, mesh.indices[i + 1] + 1,
+                      mesh.indices[i + 2] + 1);
+        out += line;
+    }
+    return out;
+}
+
 } // namespace
 
 CLI::App* add_fit_command(CLI::App& app, FitOptions& o)
@@ -59,6 +78,9 @@ CLI::App* add_fit_command(CLI::App& app, FitOptions& o)
     cmd->add_option("--up", o.up,
                     "The file's up axis: from_file, +x, +y, +z, -x, -y, -z (default from_file)");
     cmd->add_option("--name", o.name, "Body name (default: the file name without extension)");
+    cmd->add_flag("--attach", o.attach,
+                  "With --scene and one part: also write the mesh in the fitted body's frame as "
+                  "SCENE_STEM_NAME.obj next to the scene and name it as the body's render \"mesh\"");
     return cmd;
 }
 
@@ -68,6 +90,10 @@ int fit_command(const FitOptions& o)
     import_def.scale = o.scale;
     if (!parse_up_axis(o.up, import_def.up_axis)) {
         print_error("--up: expected one of from_file, +x, +y, +z, -x, -y, -z, found " + o.up);
+        return k_exit_bad_input;
+    }
+    if (o.attach && (o.scene_out.empty() || o.parts != 1)) {
+        print_error("--attach: needs --scene OUT.json and one part (--parts 1)");
         return k_exit_bad_input;
     }
     if (!o.scene_out.empty())
@@ -104,6 +130,19 @@ int fit_command(const FitOptions& o)
         worst_relative = std::max(worst_relative, f.rms_relative);
         iterations += f.iterations;
         acceptable = acceptable && f.acceptable;
+    }
+    if (o.attach) {
+        // Written first: the scene names it, so a scene on disk never points at a missing mesh.
+        const std::filesystem::path scene_path(o.scene_out);
+        const std::string file = scene_path.stem().string() + "_" + stem + ".obj";
+        const std::string path = (scene_path.parent_path() / file).string();
+        if (const std::string e =
+                write_file_atomically(path, mesh_in_body_frame_obj(mesh->mesh, fits->front()));
+            !e.empty()) {
+            print_error(e);
+            return k_exit_internal;
+        }
+        bodies[0]["mesh"] = file;
     }
     const nlohmann::json scene = {{"comment", "superquadrics fitted by supermodal fit to " + o.mesh},
                                   {"bodies", bodies}};

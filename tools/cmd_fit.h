@@ -17,7 +17,8 @@ struct FitOptions {
     std::string scene_out; ///< Also write the scene (loadable as is) here.
     double scale = 0.0;    ///< Metres per file unit; 0: from the file.
     std::string up = "from_file";
-    std::string name; ///< Body name; default: the mesh file's stem.
+    std::string name;    ///< Body name; default: the mesh file's stem.
+    bool attach = false; ///< Write the mesh in the fitted body's frame next to the scene, as its "mesh".
 };
 /// Registers the subcommand and its options on app.
 CLI::App* add_fit_command(CLI::App& app, FitOptions& options);

@@ -129,10 +129,7 @@ Result<std::unique_ptr<FrameCapture>> FrameCapture::open(const CaptureOptions& o
     if (!renderer)
         return Error{"", "render", "cannot render offscreen: " + renderer.error().message()};
     impl->renderer = std::make_unique<Renderer>(std::move(*renderer));
-    const std::vector<Vec3> colors = scene_body_colors(scene);
-    const std::vector<Entity> bodies = world_bodies(world);
-    for (size_t i = 0; i < bodies.size() && i < colors.size(); ++i)
-        impl->renderer->set_body_color(bodies[i], colors[i]);
+    apply_scene_looks(*impl->renderer, scene, world);
     // Frame the bodies once, at the start, so the camera does not swim as they move.
     impl->camera = frame_bodies(world, scene.camera, static_cast<double>(impl->width) / impl->height);
     if (!o.video.empty()) {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <gtest/gtest.h>
+#include <memory>
 #include <numbers>
 
 namespace sm = supermodal;
@@ -194,6 +195,42 @@ TEST(Renderer, DrawsModalDeformation)
     sm::Renderer flat = make_renderer(def);
     ASSERT_TRUE(flat.render(w, cam, unscaled));
     EXPECT_EQ(differing(rest, unscaled), 0.0);
+}
+
+// A body given a render mesh draws that mesh: the tessellation itself handed back as a mesh gives the
+// same image bit for bit; a different mesh (the board's tessellation at half the resolution, the
+// ball's at twice its size) changes it; bent by the board's modes like the tessellation.
+TEST(Renderer, DrawsAGivenRenderMeshAndBendsIt)
+{
+    sm::World w = load("samples/ball_on_board.json");
+    const sm::Entity board = sm::find_body(w, "board");
+    const sm::Entity ball = sm::find_body(w, "ball");
+    const sm::CameraDef cam{.target = sm::Vec3{0, 0.12, 0}, .distance = 1.4, .yaw_deg = 0, .pitch_deg = 10};
+    const sm::RenderDef def = small_def();
+    sm::Renderer r = make_renderer();
+    sm::Image plain, same, other, bent, bent_plain;
+    ASSERT_TRUE(r.render(w, cam, plain));
+    r.set_body_mesh(board, std::make_shared<sm::TriangleMesh>(
+                               sm::tessellate(sm::body_shape(w, board), def.tessellation)));
+    ASSERT_TRUE(r.render(w, cam, same));
+    EXPECT_EQ(differing(plain, same), 0.0);
+    sm::ShapeDef big = sm::body_shape(w, ball);
+    big.radii = 2.0 * big.radii;
+    r.set_body_mesh(ball, std::make_shared<sm::TriangleMesh>(sm::tessellate(big, def.tessellation)));
+    ASSERT_TRUE(r.render(w, cam, other));
+    EXPECT_GT(differing(plain, other, 16), 0.001);
+    r.set_body_mesh(ball, nullptr); // back to the tessellation
+    // Bent: the given mesh follows the modes as the tessellation does.
+    const sm::ModalBasis* basis = sm::body_modal_basis(w, board);
+    ASSERT_NE(basis, nullptr);
+    std::vector<double> q(static_cast<size_t>(basis->mode_count), 0.0), v(q.size(), 0.0);
+    q[0] = 0.05 / sm::length(sm::modal_displacement(*basis, sm::Vec3{0.5, 0, 0}, std::vector<double>{1.0}));
+    ASSERT_TRUE(sm::set_body_modal_state(w, board, q, v));
+    ASSERT_TRUE(r.render(w, cam, bent));
+    sm::Renderer r2 = make_renderer();
+    ASSERT_TRUE(r2.render(w, cam, bent_plain));
+    EXPECT_EQ(differing(bent, bent_plain), 0.0);
+    EXPECT_GT(differing(plain, bent, 16), 0.005);
 }
 
 // Interpolated frames at alpha = 0 show the previous step's poses; Current shows the last step's.

@@ -1,8 +1,11 @@
 // Tests for tools/cmd_fit.cpp: `supermodal fit` on an OBJ written here, run as a separate process.
 #include "fit/fit_cases.h"
+#include "supermodal/geometry.h"
+#include "supermodal/scene.h"
 #include "support/shapes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,4 +121,41 @@ TEST(FitCli, BadInputExitsWithStatusTwo)
     const std::string obj = write_obj(sm::tessellate(sm::test::superquadric({1, 1, 1}, 1, 1), 8), "ok.obj");
     EXPECT_EQ(run_cli("fit " + obj + " --up sideways 2>/dev/null").status, 2);
     EXPECT_EQ(run_cli("fit " + obj + " --parts 0 2>/dev/null").status, 2);
+}
+
+TEST(FitCli, AttachWritesTheMeshInTheBodyFrameAsItsRenderMesh)
+{
+    // The posed mesh, brought into the fitted body's frame, must lie on the fitted superquadric: every
+    // vertex's radial distance to it within a few fit rms (the fit's own residual), and the scene
+    // loads with that mesh as the body's render mesh (the same vertex count).
+    const sm::test::PosedShape truth =
+        sm::test::random_pose(sm::test::superquadric({0.2, 0.1, 0.15}, 0.5, 0.7), 5);
+    const std::string obj = write_obj(sm::test::posed_mesh(truth, 40), "attach.obj");
+    const fs::path dir = temp_dir() / "attach";
+    fs::create_directories(dir);
+    const std::string scene_path = (dir / "scene.json").string();
+    const Outcome o = run_cli("fit " + obj + " --json --attach --scene " + scene_path);
+    ASSERT_EQ(o.status, 0) << o.out;
+    const nlohmann::json j = nlohmann::json::parse(o.out);
+    const auto& body = j["scene"]["bodies"][0];
+    ASSERT_EQ(body["mesh"], "scene_attach.obj");
+    ASSERT_TRUE(fs::exists(dir / "scene_attach.obj"));
+    const sm::Result<sm::Scene> scene = sm::load_scene(scene_path);
+    ASSERT_TRUE(scene) << scene.error().message();
+    ASSERT_TRUE(scene->bodies[0].render_mesh);
+    const sm::TriangleMesh& mesh = *scene->bodies[0].render_mesh;
+    EXPECT_EQ(mesh.positions.size(), sm::test::posed_mesh(truth, 40).positions.size());
+    const double rms = j["fit"]["rms_m"].get<double>();
+    double worst = 0.0;
+    for (const sm::Vec3& p : mesh.positions) {
+        // Radial distance from the surface along the ray from the centre: |p|·(1 − F^(−ε1/2)).
+        const double f = sm::inside_outside(scene->bodies[0].def.shape, p);
+        worst = std::max(worst,
+                         std::abs(sm::length(p) *
+                                  (1.0 - std::pow(f, -0.5 * body["shape"]["exponents"][0].get<double>()))));
+    }
+    EXPECT_LT(worst, std::max(10.0 * rms, 1e-6));
+    // --attach needs a scene and one part.
+    EXPECT_EQ(run_cli("fit " + obj + " --attach 2>/dev/null").status, 2);
+    EXPECT_EQ(run_cli("fit " + obj + " --attach --parts 2 --scene " + scene_path + " 2>/dev/null").status, 2);
 }

@@ -85,6 +85,9 @@ class Renderer
 
     /// Colour of a body, RGB in [0, 1]; bodies without one get a stable colour from their index.
     void set_body_color(Entity body, const Vec3& rgb);
+    /// Draws `mesh` (shape frame [m], as SceneBody::render_mesh) for the body instead of its
+    /// tessellation, deformed through the body's modes like the tessellation; null: the tessellation.
+    void set_body_mesh(Entity body, std::shared_ptr<const TriangleMesh> mesh);
     /// Draws the world as seen by `camera` (absent parts framed by frame_bodies()) into `out`.
     Status render(const World& world, const CameraDef& camera, Image& out,
                   PoseSource poses = PoseSource::Current);
@@ -123,6 +126,9 @@ project_to_pixel(const World& world, const CameraDef& camera, int width, int hei
 /// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
 /// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1].
 [[nodiscard]] std::vector<Vec3> scene_body_colors(const Scene& scene);
+/// Gives the renderer the scene's look for the world built from it: scene_body_colors() and each body's
+/// render mesh (SceneBody::render_mesh), matched in world_bodies() order.
+void apply_scene_looks(Renderer& renderer, const Scene& scene, const World& world);
 
 // ---- Images ---------------------------------------------------------------------------------------
 

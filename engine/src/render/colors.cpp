@@ -53,4 +53,15 @@ std::vector<Vec3> scene_body_colors(const Scene& scene)
     return out;
 }
 
+void apply_scene_looks(Renderer& renderer, const Scene& scene, const World& world)
+{
+    const std::vector<Vec3> colors = scene_body_colors(scene);
+    const std::vector<Entity> bodies = world_bodies(world);
+    for (size_t i = 0; i < bodies.size() && i < colors.size(); ++i) {
+        renderer.set_body_color(bodies[i], colors[i]);
+        if (scene.bodies[i].render_mesh)
+            renderer.set_body_mesh(bodies[i], scene.bodies[i].render_mesh);
+    }
+}
+
 } // namespace supermodal

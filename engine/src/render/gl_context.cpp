@@ -55,21 +55,49 @@ GlContext::~GlContext()
         eglTerminate(m_display);
 }
 
-Status GlContext::open()
+namespace
 {
-    // Client extensions (EGL 1.5 / EGL_EXT_client_extensions): is the surfaceless platform there?
+
+// A display on the surfaceless platform (Mesa: llvmpipe with no GPU and no display), else on the first
+// EGL device (EGL_EXT_platform_device: NVIDIA's driver, which has no surfaceless platform).
+EGLDisplay open_display(std::string& out_why)
+{
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
-        return render_error("no EGL display: the EGL library lacks EGL_MESA_platform_surfaceless (install "
-                            "libegl1 and libegl-mesa0; client extensions: " +
-                            std::string(client ? client : "none") + ")");
     auto get_platform_display =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    if (get_platform_display == nullptr)
-        return render_error("no EGL display: eglGetPlatformDisplayEXT is missing");
-    m_display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (get_platform_display == nullptr) {
+        out_why = "eglGetPlatformDisplayEXT is missing";
+        return EGL_NO_DISPLAY;
+    }
+    if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay d = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (d != EGL_NO_DISPLAY)
+            return d;
+    }
+    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    if (has_extension(client, "EGL_EXT_platform_device") && query_devices != nullptr) {
+        EGLDeviceEXT devices[4];
+        EGLint count = 0;
+        if (query_devices(4, devices, &count) && count > 0) {
+            EGLDisplay d = get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
+            if (d != EGL_NO_DISPLAY)
+                return d;
+        }
+    }
+    out_why = "the EGL library has neither EGL_MESA_platform_surfaceless nor a usable EGL device (install "
+              "libegl1 and libegl-mesa0; client extensions: " +
+              std::string(client ? client : "none") + ")";
+    return EGL_NO_DISPLAY;
+}
+
+} // namespace
+
+Status GlContext::open()
+{
+    std::string why;
+    m_display = open_display(why);
     if (m_display == EGL_NO_DISPLAY)
-        return render_error("no EGL display: " + egl_error_text("eglGetPlatformDisplayEXT(surfaceless)"));
+        return render_error("no EGL display: " + why);
     EGLint major = 0, minor = 0;
     {
         const std::lock_guard lock(g_display_mutex);

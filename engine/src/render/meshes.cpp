@@ -86,9 +86,19 @@ const GpuMesh& MeshCache::get(const ShapeDef& shape, int tessellation, const std
     auto it = m_meshes.find(key);
     if (it != m_meshes.end())
         return *it->second;
+    return get(tessellate(shape, tessellation), key);
+}
+
+const GpuMesh& MeshCache::get(const TriangleMesh& mesh, const std::string& key)
+{
+    auto it = m_meshes.find(key);
+    if (it != m_meshes.end())
+        return *it->second;
     auto m = std::make_unique<GpuMesh>();
-    m->mesh = tessellate(shape, tessellation);
+    m->mesh = mesh;
     face_normals_per_vertex(m->mesh.positions, m->mesh.indices, m->rest_face_normals);
+    if (m->mesh.normals.size() != m->mesh.positions.size())
+        m->mesh.normals = m->rest_face_normals;
     std::vector<float> vertices;
     interleave(m->mesh.positions, m->mesh.normals, vertices);
     m->index_count = static_cast<GLsizei>(m->mesh.indices.size());

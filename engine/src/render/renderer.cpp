@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 namespace supermodal
@@ -94,6 +95,7 @@ struct Renderer::Impl {
     render::MeshCache meshes;
     std::map<Entity, BodyEntry> bodies;
     std::map<Entity, Vec3> colors;
+    std::map<Entity, std::shared_ptr<const TriangleMesh>> custom_meshes; ///< set_body_mesh()
     const World* last_world = nullptr;
     GLuint empty_vao = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
     std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
@@ -145,10 +147,14 @@ struct Renderer::Impl {
     BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape)
     {
         BodyEntry& e = bodies[b];
-        std::string key = render::shape_key(shape, def.tessellation);
+        auto custom = custom_meshes.find(b);
+        const TriangleMesh* given = custom != custom_meshes.end() ? custom->second.get() : nullptr;
+        // A given mesh is keyed by its address (held alive by custom_meshes), a shape by its fields.
+        std::string key = given != nullptr ? "mesh@" + std::to_string(reinterpret_cast<uintptr_t>(given))
+                                           : render::shape_key(shape, def.tessellation);
         const ModalBasis* basis = body_modal_basis(world, b);
-        if (e.mesh == nullptr || e.key != key) { // new body or a changed shape
-            e.mesh = &meshes.get(shape, def.tessellation, key);
+        if (e.mesh == nullptr || e.key != key) { // new body, a changed shape or a given mesh
+            e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, def.tessellation, key);
             e.key = std::move(key);
             e.skin.reset();
         }
@@ -389,6 +395,14 @@ void Renderer::set_body_color(Entity body, const Vec3& rgb)
 {
     m_impl->colors[body] =
         Vec3{std::clamp(rgb.x, 0.0, 1.0), std::clamp(rgb.y, 0.0, 1.0), std::clamp(rgb.z, 0.0, 1.0)};
+}
+
+void Renderer::set_body_mesh(Entity body, std::shared_ptr<const TriangleMesh> mesh)
+{
+    if (mesh)
+        m_impl->custom_meshes[body] = std::move(mesh);
+    else
+        m_impl->custom_meshes.erase(body);
 }
 Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses)
 {
