@@ -93,8 +93,11 @@ TEST(Constraint, AssemblyIsDeterministicAndSnapshotsBitExactly)
 
 TEST(Constraint, AssemblySettlesOnTheGround)
 {
+    // The pair rocks on its rounded faces and settles slowly (measured 2026-11-26, top box: 1.0 cm/s
+    // at 3 s, 0.42 cm/s at 4 s, 0.32 at 5 s, 0.11 at 6 s; rounding-level changes in the support map
+    // move the 3 s value across 1 cm/s), so the bound is checked at 5 s.
     Assembly a = make_assembly(false);
-    run_steps(a.world, 3000);
+    run_steps(a.world, 5000);
     EXPECT_LT(sm::length(sm::body_linear_velocity(a.world, a.top)), 1e-2);
     // The joint holds to within the top box's weight over its spring: m·g/(m_eff·ω²) ≈ 0.14 mm.
     EXPECT_LT(sm::constraint_error(a.world, a.joint).linear, 1e-3);
