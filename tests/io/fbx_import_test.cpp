@@ -2,6 +2,7 @@
 // and UpAxis are honoured. The FBX is written by assimp's own ASCII exporter from an OBJ written here,
 // then its global settings are edited as text, so the test needs no binary fixture.
 #include "supermodal/mesh_io.h"
+#include "support/obj_file.h"
 #include "support/shapes.h"
 
 #include <algorithm>
@@ -40,17 +41,7 @@ sm::TriangleMesh source_mesh()
 std::string fbx_text(const sm::TriangleMesh& m)
 {
     const fs::path obj = temp_dir() / "fbx_source.obj";
-    {
-        std::ofstream out(obj);
-        char line[160];
-        for (const sm::Vec3& p : m.positions) {
-            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
-            out << line;
-        }
-        for (size_t t = 0; t < m.indices.size(); t += 3)
-            out << "f " << m.indices[t] + 1 << ' ' << m.indices[t + 1] + 1 << ' ' << m.indices[t + 2] + 1
-                << '\n';
-    }
+    sm::test::write_obj_file(m, obj.string());
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(obj.string(), 0);
     if (scene == nullptr)

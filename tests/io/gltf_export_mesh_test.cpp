@@ -8,6 +8,7 @@
 #include "supermodal/modal.h"
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
+#include "support/obj_file.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
@@ -44,14 +45,7 @@ void write_board_obj(const fs::path& path)
     s.epsilon1 = 0.3;
     s.epsilon2 = 0.5;
     const sm::TriangleMesh m = sm::tessellate(s, 20);
-    std::ofstream out(path);
-    char line[160];
-    for (const sm::Vec3& p : m.positions) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-        out << line;
-    }
-    for (size_t t = 0; t < m.indices.size(); t += 3)
-        out << "f " << m.indices[t] + 1 << ' ' << m.indices[t + 1] + 1 << ' ' << m.indices[t + 2] + 1 << '\n';
+    sm::test::write_obj_file(m, path.string());
 }
 
 // samples/ball_on_board.json with a "mesh" on body 3 (the board).

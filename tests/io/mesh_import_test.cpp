@@ -1,6 +1,7 @@
 // Tests for engine/src/io/mesh_import.cpp: files written here from a tessellated superquadric come
 // back with the same vertices, triangles and volume; units, up axis and node transforms; clear errors.
 #include "supermodal/mesh_io.h"
+#include "support/obj_file.h"
 #include "support/shapes.h"
 
 #include <cstdint>
@@ -36,14 +37,7 @@ sm::TriangleMesh source_mesh()
 std::string write_obj(const sm::TriangleMesh& m, const char* name)
 {
     const fs::path path = temp_dir() / name;
-    std::ofstream out(path);
-    char line[160];
-    for (const sm::Vec3& p : m.positions) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-        out << line;
-    }
-    for (size_t t = 0; t < m.indices.size(); t += 3)
-        out << "f " << m.indices[t] + 1 << ' ' << m.indices[t + 1] + 1 << ' ' << m.indices[t + 2] + 1 << '\n';
+    sm::test::write_obj_file(m, path.string());
     return path.string();
 }
 

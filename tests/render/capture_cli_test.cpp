@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `supermodal run --frames/--every/--size/--video`, run as a separate process like a user would.
 #include "supermodal/render.h"
+#include "support/run_command.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -8,29 +9,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace
 {
 
-struct Outcome {
-    int status = -1;
-    std::string output;
-};
+using Outcome = supermodal::test::CommandOutcome;
 
 Outcome run_cli(const std::string& args)
 {
-    Outcome o;
-    FILE* pipe = ::popen((std::string(SM_CLI) + " " + args + " 2>&1").c_str(), "r");
-    if (pipe == nullptr)
-        return o;
-    char buf[4096];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        o.output.append(buf, n);
-    const int raw = ::pclose(pipe);
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return o;
+    return supermodal::test::run_command(std::string(SM_CLI) + " " + args + " 2>&1");
 }
 
 std::filesystem::path fresh_dir(const char* name)

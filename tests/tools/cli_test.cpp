@@ -1,4 +1,6 @@
 // Tests for tools/ (the supermodal command line), run as a separate process like a user would.
+#include "support/run_command.h"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -6,30 +8,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace
 {
 
-struct Outcome {
-    int status = -1;
-    std::string output; ///< stdout and stderr together.
-};
+using Outcome = supermodal::test::CommandOutcome;
 
 Outcome run_cli(const std::string& args)
 {
-    Outcome o;
-    const std::string cmd = std::string(SM_CLI) + " " + args + " 2>&1";
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe)
-        return o;
-    char buf[4096];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        o.output.append(buf, n);
-    const int raw = ::pclose(pipe);
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return o;
+    return supermodal::test::run_command(std::string(SM_CLI) + " " + args + " 2>&1");
 }
 
 std::string scene(const char* name)

@@ -2,6 +2,7 @@
 // board, then the GLB read back by the engine's own import (assimp) and the report checked.
 #include "supermodal/geometry.h"
 #include "supermodal/mesh_io.h"
+#include "support/run_command.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -9,7 +10,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace sm = supermodal;
 namespace fs = std::filesystem;
@@ -17,25 +17,12 @@ namespace fs = std::filesystem;
 namespace
 {
 
-struct Outcome {
-    int status = -1;
-    std::string out;
-};
+using Outcome = supermodal::test::CommandOutcome;
 
 /// Runs the CLI; stdout only (stderr goes to the test log), so JSON output parses as is.
 Outcome run_cli(const std::string& args)
 {
-    Outcome o;
-    FILE* pipe = ::popen((std::string(SM_CLI) + " " + args).c_str(), "r");
-    if (!pipe)
-        return o;
-    char buf[4096];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        o.out.append(buf, n);
-    const int raw = ::pclose(pipe);
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return o;
+    return supermodal::test::run_command(std::string(SM_CLI) + " " + args);
 }
 
 // One folder per test: ctest runs the tests of this file in parallel processes.
@@ -56,8 +43,8 @@ TEST(ExportCli, WritesAGlbAndAnObjSequenceAndReportsThem)
     const fs::path glb = dir / "anim.glb", objs = dir / "objs";
     const Outcome o = run_cli("export " + k_scene + " --seconds 0.2 --fps 30 --out " + glb.string() +
                               " --obj " + objs.string() + " --json");
-    ASSERT_EQ(o.status, 0) << o.out;
-    const nlohmann::json r = nlohmann::json::parse(o.out);
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json r = nlohmann::json::parse(o.output);
     EXPECT_EQ(r["bodies"], 4);                               // the floor plane is left out
     EXPECT_EQ(r["frames"], 7);                               // 0, 1/30, ..., 6/30 s
     EXPECT_EQ(r["morph_targets"], 8);                        // the board's eight modes
@@ -98,8 +85,8 @@ TEST(ExportCli, ASceneBodysRenderMeshReplacesItsTessellation)
     ball.radii = {0.025, 0.025, 0.025};
     ball.epsilon1 = ball.epsilon2 = 1.0;
     const size_t ball_vertices = sm::tessellate(ball, 32).positions.size();
-    EXPECT_EQ(nlohmann::json::parse(meshed.out)["vertices"].get<size_t>() + ball_vertices - 4,
-              nlohmann::json::parse(plain.out)["vertices"].get<size_t>());
+    EXPECT_EQ(nlohmann::json::parse(meshed.output)["vertices"].get<size_t>() + ball_vertices - 4,
+              nlohmann::json::parse(plain.output)["vertices"].get<size_t>());
     scene["bodies"][4]["mesh"] = "missing.obj";
     std::ofstream(dir / "bad.json") << scene.dump();
     EXPECT_EQ(run_cli("export " + (dir / "bad.json").string() + " --out " + (dir / "c.glb").string()).status,

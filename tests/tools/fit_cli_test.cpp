@@ -2,6 +2,8 @@
 #include "fit/fit_cases.h"
 #include "supermodal/geometry.h"
 #include "supermodal/scene.h"
+#include "support/obj_file.h"
+#include "support/run_command.h"
 #include "support/shapes.h"
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace sm = supermodal;
 namespace fs = std::filesystem;
@@ -20,25 +21,12 @@ namespace fs = std::filesystem;
 namespace
 {
 
-struct Outcome {
-    int status = -1;
-    std::string out;
-};
+using Outcome = supermodal::test::CommandOutcome;
 
 /// Runs the CLI; stdout only (stderr goes to the test log), so JSON output parses as is.
 Outcome run_cli(const std::string& args)
 {
-    Outcome o;
-    FILE* pipe = ::popen((std::string(SM_CLI) + " " + args).c_str(), "r");
-    if (!pipe)
-        return o;
-    char buf[4096];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        o.out.append(buf, n);
-    const int raw = ::pclose(pipe);
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return o;
+    return supermodal::test::run_command(std::string(SM_CLI) + " " + args);
 }
 
 fs::path temp_dir()
@@ -51,14 +39,7 @@ fs::path temp_dir()
 std::string write_obj(const sm::TriangleMesh& m, const char* name)
 {
     const fs::path path = temp_dir() / name;
-    std::ofstream out(path);
-    char line[160];
-    for (const sm::Vec3& p : m.positions) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-        out << line;
-    }
-    for (size_t t = 0; t < m.indices.size(); t += 3)
-        out << "f " << m.indices[t] + 1 << ' ' << m.indices[t + 1] + 1 << ' ' << m.indices[t + 2] + 1 << '\n';
+    sm::test::write_obj_file(m, path.string());
     return path.string();
 }
 
@@ -72,8 +53,8 @@ TEST(FitCli, FitsAnObjAndPrintsALoadableScene)
     const std::string obj = write_obj(sm::test::posed_mesh(truth, 48), "body.obj");
     const std::string scene_path = (temp_dir() / "fitted.json").string();
     const Outcome o = run_cli("fit " + obj + " --json --scene " + scene_path);
-    ASSERT_EQ(o.status, 0) << o.out;
-    const nlohmann::json j = nlohmann::json::parse(o.out);
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json j = nlohmann::json::parse(o.output);
     const auto& fit = j["fit"];
     EXPECT_LT(fit["rms_m"].get<double>(), 1e-3 * 0.3);
     EXPECT_LT(fit["rms_relative"].get<double>(), 5e-3);
@@ -96,8 +77,8 @@ TEST(FitCli, FitsAnObjAndPrintsALoadableScene)
         EXPECT_NEAR(body["position"][i].get<double>(), truth.position[i], 0.01 * 0.6);
     // The written scene loads as it is.
     const Outcome inspect = run_cli("inspect " + scene_path + " --json");
-    ASSERT_EQ(inspect.status, 0) << inspect.out;
-    EXPECT_EQ(nlohmann::json::parse(inspect.out)["bodies"].size(), 1u);
+    ASSERT_EQ(inspect.status, 0) << inspect.output;
+    EXPECT_EQ(nlohmann::json::parse(inspect.output)["bodies"].size(), 1u);
 }
 
 TEST(FitCli, PartsGiveOneBodyEach)
@@ -107,8 +88,8 @@ TEST(FitCli, PartsGiveOneBodyEach)
     sm::TriangleMesh pair = sm::test::posed_mesh(a, 32);
     sm::test::append_mesh(pair, sm::test::posed_mesh(b, 32));
     const Outcome o = run_cli("fit " + write_obj(pair, "pair.obj") + " --parts 2 --json");
-    ASSERT_EQ(o.status, 0) << o.out;
-    const nlohmann::json j = nlohmann::json::parse(o.out);
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json j = nlohmann::json::parse(o.output);
     ASSERT_EQ(j["scene"]["bodies"].size(), 2u);
     EXPECT_EQ(j["scene"]["bodies"][1]["name"], "pair_1");
     EXPECT_LT(j["fit"]["rms_relative"].get<double>(), 0.005); // the worse of two exact boxes
@@ -135,8 +116,8 @@ TEST(FitCli, AttachWritesTheMeshInTheBodyFrameAsItsRenderMesh)
     fs::create_directories(dir);
     const std::string scene_path = (dir / "scene.json").string();
     const Outcome o = run_cli("fit " + obj + " --json --attach --scene " + scene_path);
-    ASSERT_EQ(o.status, 0) << o.out;
-    const nlohmann::json j = nlohmann::json::parse(o.out);
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json j = nlohmann::json::parse(o.output);
     const auto& body = j["scene"]["bodies"][0];
     ASSERT_EQ(body["mesh"], "scene_attach.obj");
     ASSERT_TRUE(fs::exists(dir / "scene_attach.obj"));
