@@ -4,7 +4,7 @@
 // chunk padded with zeros, each to 4 bytes. One bufferView per accessor, 4-byte aligned, tightly
 // packed (so no byteStride); vertex data targets ARRAY_BUFFER, indices ELEMENT_ARRAY_BUFFER, animation
 // data no target (the specification forbids a target there).
-#include "io/gltf_export_file.h"
+#include "core/atomic_file.h"
 #include "supermodal/export.h"
 
 #include <cmath>
@@ -249,7 +249,7 @@ Status write_glb(const ExportRecording& rec, const std::string& path)
     Result<std::vector<uint8_t>> bytes = glb_from_recording(rec);
     if (!bytes)
         return Error{path, bytes.error().where, bytes.error().what};
-    return io::write_file_atomically(path, bytes->data(), bytes->size());
+    return write_file_atomically(path, bytes->data(), bytes->size());
 }
 
 } // namespace supermodal

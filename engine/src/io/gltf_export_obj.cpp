@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Export, part 3: a recording as one Wavefront OBJ per sample, every body deformed and posed (world).
-#include "io/gltf_export_file.h"
+#include "core/atomic_file.h"
 #include "supermodal/export.h"
 
 #include <cstdio>
@@ -45,8 +45,7 @@ Status write_obj_sequence(const ExportRecording& rec, const std::string& dir)
             base += b.mesh.positions.size();
         }
         std::snprintf(line, sizeof line, "frame_%06zu.obj", f);
-        if (Status s = io::write_file_atomically((fs::path(dir) / line).string(), text.data(), text.size());
-            !s)
+        if (Status s = write_file_atomically((fs::path(dir) / line).string(), text.data(), text.size()); !s)
             return s;
     }
     return {};

@@ -4,17 +4,15 @@
 // whose value means "not set" (an unbounded yield stress, an automatic lattice, no joint limit) are
 // left out so that they read back as "not set"; every other field is written, so an editor can reach
 // it by its JSON pointer.
+#include "core/atomic_file.h"
 #include "scene/json_text.h"
 #include "supermodal/body.h"
 #include "supermodal/scene.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 namespace supermodal
 {
@@ -275,26 +273,8 @@ std::string scene_to_json(const Scene& scene)
 Status save_scene(const Scene& scene, const std::string& path)
 {
     const std::string text = scene_to_json(scene);
-    // Same folder, so the rename stays on one file system and is atomic; the pid keeps two writers apart.
-    const std::string temp = path + ".tmp." + std::to_string(::getpid());
-    std::FILE* file = std::fopen(temp.c_str(), "wb");
-    if (file == nullptr)
-        return Error{path, "", std::string("cannot write the scene: ") + std::strerror(errno)};
-    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size() &&
-                         std::fflush(file) == 0 && ::fsync(::fileno(file)) == 0;
-    const int write_errno = errno;
-    const bool closed = std::fclose(file) == 0;
-    if (!written || !closed) {
-        std::remove(temp.c_str());
-        return Error{path, "",
-                     std::string("cannot write the scene: ") + std::strerror(written ? errno : write_errno)};
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::remove(temp.c_str());
-        return Error{path, "", "cannot replace the scene file: " + ec.message()};
-    }
+    if (Status s = write_file_atomically(path, text.data(), text.size()); !s)
+        return Error{path, "", "cannot write the scene: " + s.error().what};
     return {};
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "io/gltf_export_file.h"
+#include "core/atomic_file.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-namespace supermodal::io
+namespace supermodal
 {
 
 Status write_file_atomically(const std::string& path, const void* data, size_t size)
@@ -16,7 +16,8 @@ Status write_file_atomically(const std::string& path, const void* data, size_t s
     const std::string temp = path + ".tmp." + std::to_string(::getpid());
     std::FILE* file = std::fopen(temp.c_str(), "wb");
     if (file == nullptr)
-        return Error{path, "", std::string("cannot write: ") + std::strerror(errno)};
+        return Error{path, "",
+                     std::string("cannot create a temporary file beside it: ") + std::strerror(errno)};
     const bool written =
         std::fwrite(data, 1, size, file) == size && std::fflush(file) == 0 && ::fsync(::fileno(file)) == 0;
     const int write_errno = errno;
@@ -34,4 +35,4 @@ Status write_file_atomically(const std::string& path, const void* data, size_t s
     return {};
 }
 
-} // namespace supermodal::io
+} // namespace supermodal

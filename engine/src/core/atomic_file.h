@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Atomic file output for the exporters.
+// Atomic file output: the scene writer and the exporters.
 #pragma once
 
 #include "supermodal/result.h"
@@ -7,11 +7,11 @@
 #include <cstddef>
 #include <string>
 
-namespace supermodal::io
+namespace supermodal
 {
 
 /// Writes `size` bytes to `path` through a temporary file in the same folder, flushed and synced, then
 /// renamed over `path`: a reader never sees half a file and a failure leaves nothing behind.
 [[nodiscard]] Status write_file_atomically(const std::string& path, const void* data, size_t size);
 
-} // namespace supermodal::io
+} // namespace supermodal
