@@ -35,7 +35,8 @@ typedef enum sm_status {
     SM_ERROR_NOT_FOUND = 5,         /* No body of that name. */
     SM_ERROR_BUFFER_TOO_SMALL = 6,  /* The caller's buffer is shorter than the result; count says how long. */
     SM_ERROR_SNAPSHOT_MISMATCH = 7, /* The snapshot does not fit this world (bodies created/destroyed). */
-    SM_ERROR_INTERNAL = 8           /* An unexpected failure inside the engine (e.g. out of memory). */
+    SM_ERROR_INTERNAL = 8,          /* An unexpected failure inside the engine (e.g. out of memory). */
+    SM_STATUS_MAX_ENUM = 0x7FFFFFFF /* Not a status: keeps the enum 32-bit so any int is a valid value. */
 } sm_status;
 
 /* Constant name of a status ("SM_ERROR_SCENE"); "SM_UNKNOWN_STATUS" for values outside the enum. */

@@ -135,6 +135,8 @@ const char* sm_status_string(sm_status status)
         return "SM_ERROR_SNAPSHOT_MISMATCH";
     case SM_ERROR_INTERNAL:
         return "SM_ERROR_INTERNAL";
+    case SM_STATUS_MAX_ENUM:
+        break;
     }
     return "SM_UNKNOWN_STATUS";
 }
