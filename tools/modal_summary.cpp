@@ -44,6 +44,15 @@ void add_modal_summaries(const World& world, nlohmann::json& io_bodies)
                                  {"yield_stress_pa", finite_or_null(p.yield_stress)},
                                  {"plastic_strain", p.plastic_strain},
                                  {"max_plastic_offset", set}};
+        const BodyModalActivity act = body_modal_activity(world, bodies[i]);
+        if (act.adaptive) // "dynamics": "auto": what it chose and the error it left out
+            io_bodies[i]["modal"]["auto"] = {{"active_modes", act.active_modes},
+                                             {"most_active_modes", act.most_active_modes},
+                                             {"chosen", act.most_active_modes > 0 ? "modal" : "rigid"},
+                                             {"truncation_estimate_m", act.truncation_estimate},
+                                             {"max_truncation_estimate_m", act.max_truncation_estimate},
+                                             {"active_count_changes", act.active_count_changes},
+                                             {"active_mode_substeps", act.active_mode_substeps}};
     }
 }
 

@@ -374,8 +374,9 @@ TEST(SceneLoader, ConstraintsBuildIntoTheWorld)
 TEST(SceneLoaderErrors, DynamicsErrors)
 {
     // Modal scenes themselves are tested in modal_scene_test.cpp.
-    EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "auto"},)"), "/bodies/0/dynamics/type",
-                         "not implemented yet"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"accuracy": {"displacement": 0}}})", "/settings/accuracy/displacement",
+                         "expected a number > 0, found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"accuracy": {"force": 1}}})", "/settings/accuracy/force", "force"));
     EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "rigid", "modes": 0},)"),
                          "/bodies/0/dynamics/modes", "expected an integer"));
 }

@@ -164,3 +164,30 @@ TEST(SceneModal, ReadsPlasticityFromTheMaterial)
                                "expected a number > 0"));
     EXPECT_TRUE(material_error(R"("yield_stres": 1)", "/materials/clay/yield_stres", "\"yield_stress\""));
 }
+
+TEST(SceneModal, AutoIsAdaptiveModalWithTheScenesBudgetOrRigidWhereItCannotDeform)
+{
+    std::string json = board_scene(R"({"type": "auto", "modes": 16})");
+    json.insert(1, R"("settings": {"accuracy": {"displacement": 2e-4}}, )");
+    const sm::Result<sm::Scene> scene = sm::parse_scene(json);
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::SceneBody& body = scene->bodies[0];
+    EXPECT_EQ(body.dynamics, sm::DynamicsType::Auto);
+    EXPECT_TRUE(body.def.modal.enabled);
+    EXPECT_EQ(body.def.modal.mode_count, 16);
+    EXPECT_EQ(body.def.modal.adaptive_tolerance, 2e-4);
+    EXPECT_EQ(scene->accuracy.displacement, 2e-4);
+
+    // Written and read back: still auto, same budget.
+    const sm::Result<sm::Scene> again = sm::parse_scene(sm::scene_to_json(*scene));
+    ASSERT_TRUE(again) << again.error().message();
+    EXPECT_EQ(again->bodies[0].dynamics, sm::DynamicsType::Auto);
+    EXPECT_EQ(again->bodies[0].def.modal.adaptive_tolerance, 2e-4);
+
+    // A static body cannot deform: auto makes it rigid, without an error. Default budget: 1 mm.
+    const sm::Result<sm::Scene> fixed =
+        sm::parse_scene(board_scene(R"({"type": "auto"})", R"("motion": "static", )"));
+    ASSERT_TRUE(fixed) << fixed.error().message();
+    EXPECT_FALSE(fixed->bodies[0].def.modal.enabled);
+    EXPECT_EQ(fixed->accuracy.displacement, 1e-3);
+}

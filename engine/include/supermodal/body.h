@@ -53,6 +53,10 @@ struct ModalBodyDef {
         0.0; ///< Linear hardening modulus H [Pa], ≥ 0: yield grows by H per unit plastic strain.
     /// Accumulated equivalent plastic strain [-], > 0, past which the body flows no more; ∞: no limit.
     double max_plastic_strain = std::numeric_limits<double>::infinity();
+    /// Adaptive modes (scene "dynamics": "auto", docs/modal.md "Adaptive modes") [m], finite, ≥ 0.
+    /// 0: every mode is stepped always. > 0: the body starts rigid and steps only the lowest modes its
+    /// loads need for the surface displacement left out to stay under this; mode_count is the most.
+    double adaptive_tolerance = 0.0;
 };
 
 /// How to make a body. Start from default_body_def() and change what differs.

@@ -188,6 +188,22 @@ struct BodyModalState {
 /// Sets a modal body's amplitudes and rates (both of its mode count, finite); its surface follows.
 Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
                             std::span<const double> velocities);
+/// How a modal body uses its modes. Adaptive bodies (ModalBodyDef::adaptive_tolerance > 0, scene
+/// "dynamics": "auto") step only the lowest ones their loads need; the others step all of them.
+struct BodyModalActivity {
+    bool adaptive = false;
+    int active_modes = 0;      ///< Modes stepped now [-]; 0: the body moves as a rigid one.
+    int most_active_modes = 0; ///< The most stepped at once since the body was made [-].
+    /// Surface displacement the modes left out may reach, last substep [m] (an upper estimate: each mode's
+    /// free amplitude or twice its static response, summed; adaptive bodies only).
+    double truncation_estimate = 0.0;
+    double max_truncation_estimate = 0.0; ///< Its largest value since the body was made [m].
+    uint64_t active_count_changes = 0;    ///< Times the active count changed [-].
+    double active_mode_substeps = 0.0;    ///< Σ over substeps of the active count [-] (adaptive bodies):
+                                          ///< the modal work done, in mode-substeps.
+};
+/// Zeros for a rigid body.
+[[nodiscard]] BodyModalActivity body_modal_activity(const World& world, Entity body);
 /// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² (q − q_p)²) [J]; 0 for a rigid body.
 [[nodiscard]] double body_modal_energy(const World& world, Entity body);
 /// The plastic part of a modal body's state (BodyModalState's companion; zero for elastic bodies).

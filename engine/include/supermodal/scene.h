@@ -34,9 +34,16 @@ struct MaterialDef {
     double max_plastic_strain = std::numeric_limits<double>::infinity(); ///< Plastic flow limit [-], > 0.
 };
 
-/// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto
-/// (refused for now: it needs the accuracy estimate of issue #6 item 4).
+/// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto:
+/// modal with adaptive modes (ModalBodyDef::adaptive_tolerance = the scene's accuracy budget), so it
+/// stays rigid until its loads need modes. Auto on a body that cannot be modal (static, kinematic, a
+/// plane) is rigid.
 enum class DynamicsType : uint8_t { Rigid, Modal, Auto };
+
+/// A scene's error budget (settings "accuracy"), for bodies with "dynamics": "auto".
+struct AccuracyDef {
+    double displacement = 1e-3; ///< Surface displacement an auto body may leave out [m], > 0.
+};
 
 /// One body of a scene: its BodyDef plus the scene-level fields.
 struct SceneBody {
@@ -75,6 +82,7 @@ struct Scene {
     std::string source; ///< File it came from, or "<string>".
     WorldDef world = default_world_def();
     double duration = 5.0;                    ///< Default run length [s], > 0.
+    AccuracyDef accuracy;                     ///< Error budget of "auto" bodies.
     std::vector<MaterialDef> materials;       ///< In file order.
     std::vector<SceneBody> bodies;            ///< In file order; creation order in the world.
     std::vector<SceneConstraint> constraints; ///< In file order, created after the bodies.

@@ -104,11 +104,13 @@ bool modal_anchor(Registry& reg, Entity e, const Vec3& local, double h, bool wit
     out.gain.resize(r);
     for (size_t k = 0; k < r; ++k) {
         out.phi[k] = rotate(rot, out.phi[k]);
-        out.displacement += b->q[k] * out.phi[k];
-        if (with_rotation) {
+        if (with_rotation)
             out.psi[k] = rotate(rot, out.psi[k]);
+        if (k >= b->active)
+            continue; // an adaptive body's hidden mode: not felt, but its load still counts (push)
+        out.displacement += b->q[k] * out.phi[k];
+        if (with_rotation)
             out.rotation += b->q[k] * out.psi[k];
-        }
         const modal::ModeStep s = mode_map(*b, k, h);
         // The host loads (apply_force) are known now; contact loads join in the ModalUpdate stage.
         out.drift[k] = ((s.a11 - 1.0) * b->q[k] + s.a12 * b->q_dot[k] + s.b1 * b->host_force[k]) / h;

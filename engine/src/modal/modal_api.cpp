@@ -71,8 +71,31 @@ Status set_body_modal_state(World& world, Entity e, std::span<const double> ampl
             return Error{"", "modal", "amplitudes and rates must be finite"};
     b->q.assign(amplitudes.begin(), amplitudes.end());
     b->q_dot.assign(velocities.begin(), velocities.end());
+    // An adaptive body activates every mode up to the highest one set.
+    size_t needed = b->active;
+    for (size_t k = b->active; k < b->q.size(); ++k)
+        if (amplitudes[k] != b->q_plastic[k] || velocities[k] != 0.0)
+            needed = k + 1;
+    if (needed != b->active)
+        set_active_modes(*b, needed);
     update_modal_surface(*b);
     return {};
+}
+
+BodyModalActivity body_modal_activity(const World& world, Entity e)
+{
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return {};
+    BodyModalActivity out;
+    out.adaptive = b->adaptive_tolerance > 0.0;
+    out.active_modes = static_cast<int>(b->active);
+    out.most_active_modes = static_cast<int>(b->most_active);
+    out.truncation_estimate = b->truncation;
+    out.max_truncation_estimate = b->max_truncation;
+    out.active_count_changes = b->active_changes;
+    out.active_mode_substeps = b->active_mode_substeps;
+    return out;
 }
 
 double body_modal_energy(const World& world, Entity e)

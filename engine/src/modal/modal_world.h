@@ -24,6 +24,9 @@ struct StepContext;
 /// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest.
 void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasis> basis, const BodyDef& def);
 
+/// Sets how many of an adaptive body's lowest modes its surface shows (the others keep stepping, hidden).
+void set_active_modes(ModalBody& b, size_t active);
+
 /// Adds a point load f [N] at world point x [m] to e's contact generalized forces of this substep:
 /// Q += φ(x_local)ᵀ Rᵀ f. Does nothing for rigid bodies.
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);

@@ -319,9 +319,14 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
         return;
     out_body.dynamics = static_cast<DynamicsType>(type);
     const std::string type_where = pointer_join(dynamics_where, "type");
-    if (out_body.dynamics == DynamicsType::Auto)
-        return r.fail(type_where, "\"auto\" (rigid or modal chosen from an error budget) is not implemented "
-                                  "yet; use \"rigid\" or \"modal\"");
+    if (out_body.dynamics == DynamicsType::Auto) {
+        // Modal with adaptive modes where the body can deform; rigid where it cannot.
+        const ShapeType shape = out_body.def.shape.type;
+        modal.enabled = out_body.def.motion == MotionType::Dynamic &&
+                        (shape == ShapeType::Superquadric || shape == ShapeType::Hyperquadric);
+        modal.adaptive_tolerance = modal.enabled ? scene.accuracy.displacement : 0.0;
+        return;
+    }
     modal.enabled = out_body.dynamics == DynamicsType::Modal;
     if (modal.enabled && out_body.def.motion != MotionType::Dynamic)
         r.fail(type_where, "modal dynamics need a \"dynamic\" body, found motion " +

@@ -35,7 +35,8 @@ const std::vector<std::string_view> k_include_keys = {"file", "prefix", "positio
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
     "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
-    "contact", "threads"};
+    "contact", "threads",  "accuracy"};
+const std::vector<std::string_view> k_accuracy_keys = {"displacement"};
 const std::vector<std::string_view> k_contact_keys = {"path", "stiffness", "sample_spacing",
                                                       "max_samples_per_body"};
 const std::vector<std::string_view> k_contact_stiffness = {"frequency", "material"};
@@ -90,6 +91,10 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
         }
     }
     r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
+    if (const Json* accuracy = r.member(*settings, "accuracy"))
+        if (r.check_object(*accuracy, where + "/accuracy", k_accuracy_keys))
+            r.field_number(*accuracy, where + "/accuracy", "displacement", scene_io::above(0.0),
+                           out_scene.accuracy.displacement);
     if (!r.ok())
         return;
     if (Status status = validate(world); !status)
@@ -415,10 +420,10 @@ Result<World> build_world(const Scene& scene)
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
         const SceneBody& body = scene.bodies[i];
         const std::string where = scene_io::pointer_join("/bodies", i);
-        if (body.dynamics == DynamicsType::Auto)
-            return Error{scene.source, where + "/dynamics/type",
-                         "\"auto\" dynamics are not implemented yet; use \"rigid\" or \"modal\""};
-        if ((body.dynamics == DynamicsType::Modal) != body.def.modal.enabled)
+        // Auto bodies are modal with adaptive modes, or rigid where they cannot deform (parse_scene).
+        if (body.dynamics == DynamicsType::Auto
+                ? body.def.modal.enabled && !(body.def.modal.adaptive_tolerance > 0.0)
+                : (body.dynamics == DynamicsType::Modal) != body.def.modal.enabled)
             return Error{scene.source, where + "/dynamics/type",
                          "dynamics type and BodyDef::modal.enabled disagree"};
         if (Status status = validate(body.def); !status)

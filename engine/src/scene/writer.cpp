@@ -52,6 +52,7 @@ Json settings_json(const Scene& scene)
                     {"sample_spacing", w.contact.sample_spacing},
                     {"max_samples_per_body", w.contact.max_samples_per_body}};
     s["threads"] = w.thread_count;
+    s["accuracy"] = {{"displacement", scene.accuracy.displacement}};
     return s;
 }
 

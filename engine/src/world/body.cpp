@@ -125,6 +125,8 @@ Status validate(const BodyDef& def)
         if (!(def.modal.max_plastic_strain > 0.0))
             return Error{"", "modal/max_plastic_strain",
                          "expected a plastic strain limit > 0 (infinity: none)"};
+        if (!(def.modal.adaptive_tolerance >= 0.0) || !std::isfinite(def.modal.adaptive_tolerance))
+            return Error{"", "modal/adaptive_tolerance", "expected a finite displacement tolerance >= 0 m"};
         if (Status s = validate(modal_basis_def(def)); !s)
             return Error{"", "modal" + s.error().where, s.error().what};
     }

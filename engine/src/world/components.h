@@ -82,6 +82,8 @@ struct ModalSurface {
     std::shared_ptr<const modal::StressModel> stress; ///< Stress points and stress per unit amplitude.
     std::shared_ptr<modal::AccuracyCache> accuracy;   ///< Full lattice for the accuracy report, built on
                                                       ///< first use.
+    std::vector<double> mode_reach; ///< (r) per mode, the largest sample displacement per unit amplitude
+                                    ///< [1/√kg]: what an amplitude moves the surface by, at most.
 };
 
 /// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
@@ -101,7 +103,17 @@ struct ModalBody {
     std::vector<double> q_plastic;  ///< (r) plastic offsets q_p [√kg·m]: the rest shape has moved by
                                     ///< Φ q_p; the elastic part is q − q_p. Zero for elastic bodies.
     double plastic_strain = 0.0;    ///< Accumulated equivalent plastic strain [-] (hardening, limit).
-    modal::PlasticParams plastic;   ///< Model: yield, hardening, limit.
+    size_t active = 0; ///< Modes shown on the surface and felt by contact and constraints, the lowest
+                       ///< ones (all unless adaptive); the others still step. State: hashed
+                       ///< (adaptive bodies) and snapshotted.
+    modal::PlasticParams plastic;    ///< Model: yield, hardening, limit.
+    double adaptive_tolerance = 0.0; ///< Model: ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
+    // Diagnostics of adaptive bodies (body_modal_activity); restore keeps them.
+    size_t most_active = 0;
+    double truncation = 0.0;     ///< Displacement the inactive modes may miss, last substep [m].
+    double max_truncation = 0.0; ///< Its largest value [m].
+    uint64_t active_changes = 0;
+    double active_mode_substeps = 0.0; ///< Σ over substeps of the active count [-].
     // Derived and scratch.
     std::vector<double> load;       ///< (r) contact generalized forces of this substep [N/√kg].
     std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the

@@ -6,6 +6,7 @@
 #include "world/world_impl.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace supermodal
@@ -130,6 +131,8 @@ uint64_t World::state_hash() const
                     fnv.f64(v);
                 fnv.f64(b.plastic_strain);
             }
+            if (b.adaptive_tolerance > 0.0) // the others step every mode, as before adaptive modes
+                fnv.u64(b.active);
         }
     });
     for (const PairAnchor& a : w.contact.anchors) {
@@ -181,6 +184,7 @@ Snapshot World::snapshot() const
             s.modal_values.insert(s.modal_values.end(), b.host_force.begin(), b.host_force.end());
             s.modal_values.insert(s.modal_values.end(), b.q_plastic.begin(), b.q_plastic.end());
             s.modal_values.push_back(b.plastic_strain);
+            s.modal_values.push_back(static_cast<double>(b.active));
         }
     });
     for (const PairAnchor& a : w.contact.anchors) {
@@ -239,11 +243,19 @@ Status World::restore(const Snapshot& s)
     size_t modal_count = 0;
     for (Entity e : live)
         if (w.reg.has<ModalBody>(e))
-            modal_count += 4 * w.reg.get<ModalBody>(e).q.size() + 1;
+            modal_count += 4 * w.reg.get<ModalBody>(e).q.size() + 2;
     if (modal_count != s.modal_values.size())
         return Error{"", "snapshot", "corrupt snapshot: modal value count does not match its bodies"};
     for (size_t i = 0; i < live.size(); ++i)
         unpack(w, live[i], s.values.data() + i * k_values_per_body);
+    for (const double* modal = s.modal_values.data(); Entity e : live)
+        if (const ModalBody* b = w.reg.find<ModalBody>(e)) {
+            const double active = modal[4 * b->q.size() + 1];
+            if (!(active >= 0.0 && active <= static_cast<double>(b->q.size())) ||
+                active != std::floor(active))
+                return Error{"", "snapshot", "corrupt snapshot: an active mode count is out of range"};
+            modal += 4 * b->q.size() + 2;
+        }
     const double* modal = s.modal_values.data();
     for (Entity e : live) {
         ModalBody* b = w.reg.find<ModalBody>(e);
@@ -255,7 +267,8 @@ Status World::restore(const Snapshot& s)
         b->host_force.assign(modal + 2 * r, modal + 3 * r);
         b->q_plastic.assign(modal + 3 * r, modal + 4 * r);
         b->plastic_strain = modal[4 * r];
-        modal += 4 * r + 1;
+        set_active_modes(*b, static_cast<size_t>(modal[4 * r + 1]));
+        modal += 4 * r + 2;
         // The last substep's loads (accuracy report) are not state: the report starts afresh.
         std::fill(b->last_nodal_load.begin(), b->last_nodal_load.end(), 0.0);
         std::fill(b->last_load.begin(), b->last_load.end(), 0.0);
