@@ -24,10 +24,12 @@ struct Pinned {
 // friction-anchor update after constraints and the stronger dummy joint friction). 2026-11-26: the
 // hash covers the rolling anchors (chair, ball on board, pile); the board sample has rolling resistance.
 // Then demo and chair: the support map of ε ≠ 1 with three powers instead of five (rounding-level).
+// Ball on board (issue #9 stability map): a contact's modal inverse mass is the weighted mean over its
+// points instead of the value at their centroid (penalty.cpp), so the board's spring moves slightly.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xadf60810e368bf63ULL},
     {"chair_with_dummy", 500, 0x9b6ffddd7c4bafb9ULL},
-    {"ball_on_board", 400, 0x6a03fd3c16b1281eULL},
+    {"ball_on_board", 400, 0x357c2f203c1539abULL},
     {"pile", 240, 0xf66c63dc00dd3679ULL},
 };
 

@@ -194,13 +194,24 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     const Vec3 ra = centroid - pa.position, rb = centroid - pb.position;
     // Effective masses at the contact, rotation included, so a push off the centre of mass (an edge,
     // a corner) gets a spring its own inertia can carry at this substep.
-    // Modes are lighter than the rigid body: they join the effective mass (modal_inverse_mass).
-    auto modal_inv = [&](const Vec3& d) {
-        return modal == nullptr ? 0.0
-                                : modal_inverse_mass(*modal, pair.a, centroid, d, params.h) +
-                                      modal_inverse_mass(*modal, pair.b, centroid, d, params.h);
+    // Modes are lighter than the rigid body: they join the effective mass (modal_inverse_mass). Each
+    // point loads the modes through its own φ(point), so the weighted mean over the points (along each
+    // point's normal; d = 0: any direction) is taken, a trace bound on the fastest mode the pair's springs
+    // excite. The centroid's alone is not: on a star-shaped (ε = 3) modal body it fell between two tips,
+    // where φ is small, and the spring was stiff enough to throw the tips' modes to 33× the drop energy
+    // in one step (docs/stability.md).
+    auto modal_inv = [&](bool along_normal) {
+        if (modal == nullptr)
+            return 0.0;
+        double sum = 0.0;
+        for (const ContactPoint& cp : points) {
+            const Vec3 d = along_normal ? cp.normal : Vec3{};
+            sum += cp.weight * (modal_inverse_mass(*modal, pair.a, cp.point, d, params.h) +
+                                modal_inverse_mass(*modal, pair.b, cp.point, d, params.h));
+        }
+        return sum / weight_sum;
     };
-    const double modal_n = modal_inv(n);
+    const double modal_n = modal_inv(true);
     const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) + modal_n);
     const double zeta = params.damping_ratio >= 0.0 ? params.damping_ratio
                                                     : io_zeta.get(std::max(ma.restitution, mb.restitution));
@@ -247,7 +258,7 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
     const Vec3 v_t = v_rel - dot(v_rel, n) * n;
     const double m_t =
-        1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) + modal_inv({}));
+        1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) + modal_inv(false));
     const double omega_t = k_tangential_frequency_ratio * omega;
     const double kt = m_t * omega_t * omega_t;
     const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;

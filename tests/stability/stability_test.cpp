@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+// The coarse stability map (issue #9, item 2; docs/stability.md): the corners and a few interior points
+// of each slice of bench/stability_map's grid. Every cell is a configuration validate() accepts.
+// Asserted everywhere: no NaN/Inf. Asserted wherever the engine claims stability: energy gain ≤ 1% of
+// the energy the scene can dissipate (tests/stability/stability_cells.h: E_ref, gain_all, gain_free).
+// Not claimed, because the map measured real gains there that no guard catches (docs/stability.md
+// "Failures"): (1) rigid pointed or concave bodies (ε ≥ 1.5) landing on a tip or rim, aspect 5…300 —
+// the contact spring's stiffness follows the effective mass at the contact as the body turns, which is
+// not a conservative force; (2) the exact modal integrator under contact — its held-force step is not
+// symplectic against the contact spring. Both need changes outside this helper's files.
+#include "stability/stability_cells.h"
+
+#include <gtest/gtest.h>
+#include <string>
+
+namespace st = supermodal::stability;
+
+namespace
+{
+
+// 1% of E_ref, the issue's bound. Every scene dissipates (restitution 0.5, friction 0.5), so a correct
+// step only loses energy; the map's claimed cells measured at most −1e-6·E_ref of "gain" (the first
+// step's rounding), so 1% is far from any noise. gain_all leaves out the springs' stored energy (≥ 0)
+// and can only understate a gain while a contact is on; gain_free (contact-free steps) is exact.
+constexpr double k_max_gain = 0.01;
+
+void expect_finite(const st::CellResult& r)
+{
+    ASSERT_TRUE(r.accepted) << r.refusal;
+    EXPECT_FALSE(r.non_finite);
+    EXPECT_EQ(r.warnings.non_finite_bodies, 0u);
+    EXPECT_EQ(r.warnings.modal_non_finite, 0u);
+}
+
+void expect_claimed_stable(const std::string& label, const st::CellDef& def)
+{
+    const st::CellResult r = st::run_cell(def);
+    SCOPED_TRACE(label + " " + st::csv_row("", def, r));
+    expect_finite(r);
+    EXPECT_LE(r.gain_all, k_max_gain);
+    EXPECT_LE(r.gain_free, k_max_gain);
+}
+
+// Failure (1) of the header comment.
+bool pointed_rim_landing(double epsilon, double aspect)
+{
+    return epsilon >= 1.5 && aspect >= 5.0 && aspect <= 300.0;
+}
+
+} // namespace
+
+TEST(StabilityMap, DropEpsilonTimesAspect)
+{
+    // Corners of ε 0.01…4 × aspect 1…1000, and a box, an ellipsoid and an octahedron inside.
+    for (const double e : {0.01, 0.3, 1.0, 2.0, 4.0})
+        for (const double a : {1.0, 30.0, 1000.0}) {
+            const st::CellDef def{.scene = st::Scene::Drop, .epsilon = e, .aspect = a, .seconds = 0.6};
+            if (pointed_rim_landing(e, a)) {
+                SCOPED_TRACE("drop (not claimed: energy)");
+                expect_finite(st::run_cell(def));
+            } else {
+                expect_claimed_stable("drop", def);
+            }
+        }
+}
+
+TEST(StabilityMap, StackMassRatioTimesStep)
+{
+    // Light on heavy and heavy on light to 10^6, with dt from 0.1 to 10 × the contact limit 1/(10 f).
+    for (const double m : {1e-6, 1.0, 1e6})
+        for (const double r : {0.1, 1.0, 10.0})
+            expect_claimed_stable(
+                "stack", {.scene = st::Scene::Stack, .mass_ratio = m, .dt_ratio = r, .seconds = 0.6});
+}
+
+TEST(StabilityMap, ImpactFrequencyTimesSpeed)
+{
+    // Penalty frequency 1 Hz … 20 × the cap (50 Hz at dt = 2 ms) × speed 1 cm/s … 1 km/s.
+    for (const double f : {1.0, 50.0, 1000.0})
+        for (const double v : {0.01, 3.0, 1000.0})
+            expect_claimed_stable(
+                "impact", {.scene = st::Scene::Impact, .frequency_hz = f, .speed = v, .seconds = 0.4});
+}
+
+TEST(StabilityMap, ModalCentralDifferenceStepTimesEpsilon)
+{
+    // Central difference below and past its limit 2/ω_max (the guard steps the modes past it exactly).
+    // ε = 3 at dt/limit 0.1 and 0.3 is the regression of the fix in penalty.cpp: the modal inverse mass
+    // taken at the contact centroid, between two tips of the star, let the spring throw the tips' modes
+    // to 68× and 74× E_ref (docs/stability.md "Found and fixed").
+    for (const double e : {0.3, 1.0, 3.0})
+        for (const double r : {0.1, 0.3, 1.1, 10.0})
+            expect_claimed_stable(
+                "modal", {.scene = st::Scene::ModalDrop, .epsilon = e, .dt_ratio = r, .seconds = 0.5});
+}
+
+TEST(StabilityMap, ModalExactStaysFinite)
+{
+    // Failure (2) of the header comment: finiteness only (the map measured +67% and +108% E_ref at
+    // ε = 1 and 2, dt = 0.1 × 2/ω_max).
+    for (const double e : {1.0, 2.0})
+        for (const double r : {0.1, 10.0}) {
+            SCOPED_TRACE("modal exact (not claimed: energy)");
+            expect_finite(st::run_cell({.scene = st::Scene::ModalDrop,
+                                        .epsilon = e,
+                                        .dt_ratio = r,
+                                        .seconds = 0.3,
+                                        .exact_modal = true}));
+        }
+}
