@@ -3,6 +3,7 @@
 
 #include "cli_common.h"
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -35,6 +36,10 @@ std::string csv_field(const std::string& s)
     return q + "\"";
 }
 
+/// Distinct on white, none of them pale (gnuplot's default set has a yellow).
+const std::array<const char*, 10> k_colours = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                                               "#8c564b", "#e377c2", "#17becf", "#000080", "#808000"};
+
 bool ok(const BenchRow& r)
 {
     return r.status == "ok" && r.knob != "reference";
@@ -63,14 +68,15 @@ std::string bench_csv(const BenchSummary& s)
 {
     std::string out =
         "knob,value,status,steps,cpu_ms_per_step,cpu_ms_per_sim_s,setup_ms,trajectory_rms_m,trajectory_max_m,"
-        "max_penetration_m,energy_drift,constraint_error_m,frequency_error,pareto\n";
+        "max_penetration_m,energy_drift,constraint_error_m,frequency_error,pareto,base\n";
     for (const BenchRow& r : s.rows) {
         out += csv_field(r.knob) + "," + csv_field(r.value) + "," + csv_field(r.status) + "," +
                std::to_string(r.steps) + "," + number(r.cpu_ms_per_step) + "," + number(r.cpu_ms_per_second) +
                "," + number(r.setup_ms) + "," + number(r.errors.trajectory_rms) + "," +
                number(r.errors.trajectory_max) + "," + number(r.max_penetration) + "," +
                optional_number(r.errors.energy_drift) + "," + optional_number(r.constraint_error) + "," +
-               optional_number(r.errors.frequency_error) + "," + (r.pareto ? "1" : "0") + "\n";
+               optional_number(r.errors.frequency_error) + "," + (r.pareto ? "1" : "0") + "," +
+               (r.base ? "1" : "0") + "\n";
     }
     return out;
 }
@@ -92,24 +98,27 @@ std::string bench_markdown(const BenchSummary& s)
     for (const BenchRow& r : s.rows) {
         const bool ref = r.knob == "reference";
         out += "| " + r.knob + " | " + r.value + " | " + r.status + " | " + number(r.cpu_ms_per_step) +
-               " | " + number(r.setup_ms) + " | " + (ref ? "0 (ref)" : number(r.errors.trajectory_rms)) +
-               " | " + (ref ? "0 (ref)" : number(r.errors.trajectory_max)) + " | " +
-               number(r.max_penetration) + " | " + cell(r.errors.energy_drift) + " | " +
-               cell(r.constraint_error) + " | " +
+               " | " + number(r.cpu_ms_per_second) + " | " + number(r.setup_ms) + " | " +
+               (ref ? "0 (ref)" : number(r.errors.trajectory_rms)) + " | " +
+               (ref ? "0 (ref)" : number(r.errors.trajectory_max)) + " | " + number(r.max_penetration) +
+               " | " + cell(r.errors.energy_drift) + " | " + cell(r.constraint_error) + " | " +
                cell(ref ? std::optional<double>() : r.errors.frequency_error) + " | " +
                (r.pareto ? "●" : "") + " |\n";
     }
     out += "\nPareto front (cheapest first):";
     std::vector<const BenchRow*> front;
+    bool base_listed = false;
     for (const BenchRow& r : s.rows)
-        if (r.pareto)
+        if (r.pareto && !(r.base && base_listed)) {
             front.push_back(&r);
+            base_listed = base_listed || r.base;
+        }
     std::sort(front.begin(), front.end(), [](const BenchRow* a, const BenchRow* b) {
         return a->cpu_ms_per_second < b->cpu_ms_per_second;
     });
     for (const BenchRow* r : front)
-        out += " " + r->knob + " " + r->value + " (" + number(r->cpu_ms_per_second) + " ms/s, " +
-               number(r->errors.trajectory_rms) + " m);";
+        out += " " + (r->base ? std::string("the scene's own settings") : r->knob + " " + r->value) + " (" +
+               number(r->cpu_ms_per_second) + " ms/s, " + number(r->errors.trajectory_rms) + " m);";
     out += "\n";
     return out;
 }
@@ -132,7 +141,8 @@ nlohmann::json bench_json(const BenchSummary& s)
                         {"energy_drift", opt(r.errors.energy_drift)},
                         {"constraint_error_m", opt(r.constraint_error)},
                         {"frequency_error", opt(r.errors.frequency_error)},
-                        {"pareto", r.pareto}});
+                        {"pareto", r.pareto},
+                        {"base", r.base}});
     return {{"scene", s.scene},
             {"seconds", s.seconds},
             {"repeats", s.repeats},
@@ -152,12 +162,16 @@ std::string bench_plot(const BenchSummary& s, const std::string& png_path)
     for (const BenchRow& r : s.rows) {
         if (!ok(r) || !(r.errors.trajectory_rms > 0.0) || !(r.cpu_ms_per_second > 0.0))
             continue; // a log axis has no place for zero
-        if (!blocks.count(r.knob))
-            order.push_back(r.knob);
-        blocks[r.knob] +=
-            number(r.cpu_ms_per_second) + " " + number(r.errors.trajectory_rms) + " \"" + r.value + "\"\n";
         if (r.pareto)
             front.push_back(&r);
+        // The scene's own settings appear under several knobs; they are drawn once, as their own point.
+        const std::string block = r.base ? "scene's own settings" : r.knob;
+        if (blocks.count(block) && r.base)
+            continue;
+        if (!blocks.count(block))
+            order.push_back(block);
+        blocks[block] += number(r.cpu_ms_per_second) + " " + number(r.errors.trajectory_rms) + " \"" +
+                         (r.base ? std::string() : r.value) + "\"\n";
     }
     if (order.empty())
         return "no configuration ran: nothing to plot";
@@ -170,17 +184,22 @@ std::string bench_plot(const BenchSummary& s, const std::string& png_path)
         data += blocks[k] + "\n\n";
     for (const BenchRow* r : front)
         data += number(r->cpu_ms_per_second) + " " + number(r->errors.trajectory_rms) + " \"\"\n";
-    std::string script = "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
-                         ".png'\n"
-                         "set logscale xy\nset grid\nset key outside right top\n"
-                         "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
-                         "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
-                         "set title 'Speed vs accuracy: " +
-                         fs::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
+    std::string script =
+        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
+        ".png'\n"
+        "set logscale xy\nset grid\nset key outside right top noenhanced\nset termoption noenhanced\n"
+        "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
+        "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
+        "set title 'Speed vs accuracy: " +
+        fs::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
     script += "plot ";
     for (size_t i = 0; i < order.size(); ++i) {
-        script += "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
-                  std::to_string(i + 4) + " ps 1.6 lw 2 title '" + order[i] + "', ";
+        const bool own = order[i] == "scene's own settings";
+        script +=
+            "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
+            (own ? std::string("3 ps 3 lw 3 lc rgb 'black'")
+                 : std::to_string(i + 4) + " ps 1.6 lw 2 lc rgb '" + k_colours[i % k_colours.size()] + "'") +
+            " title \"" + order[i] + "\", ";
         script += "'' index " + std::to_string(i) +
                   " using 1:2:3 with labels offset 0.6,0.6 left font ',8' "
                   "notitle, ";

@@ -26,6 +26,7 @@ struct BenchRow {
     double max_penetration = 0.0;           ///< [m]
     std::optional<double> constraint_error; ///< Max over steps and constraints [m]; none without any.
     bool pareto = false;                    ///< On the cost/trajectory-RMS Pareto front.
+    bool base = false; ///< The scene's own settings (the same run under several knobs: dt x1, ...).
 };
 
 /// What a report says about the run as a whole.
