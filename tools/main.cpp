@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The `supermodal` command line. Exit status: 0 ok, 2 bad input, 1 internal failure.
 #include "cli_common.h"
+#include "cmd_bench.h"
 #include "cmd_export.h"
 #include "cmd_fit.h"
 
@@ -69,6 +70,9 @@ int main(int argc, char** argv)
     cli::ExportOptions export_options;
     CLI::App* export_cmd = cli::add_export_command(app, export_options);
 
+    cli::BenchOptions bench;
+    CLI::App* bench_cmd = cli::add_bench_command(app, bench);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -94,6 +98,8 @@ int main(int argc, char** argv)
             return cli::fit_command(fit);
         if (export_cmd->parsed())
             return cli::export_command(export_options);
+        if (bench_cmd->parsed())
+            return cli::bench_command(bench);
     } catch (const std::exception& e) {
         cli::print_error(std::string("internal error: ") + e.what());
         return cli::k_exit_internal;

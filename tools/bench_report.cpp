@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+#include "bench_report.h"
+
+#include "cli_common.h"
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <unistd.h>
+
+namespace supermodal::cli
+{
+namespace
+{
+
+std::string number(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+std::string optional_number(const std::optional<double>& v)
+{
+    return v ? number(*v) : std::string();
+}
+
+std::string csv_field(const std::string& s)
+{
+    if (s.find_first_of(",\"\n") == std::string::npos)
+        return s;
+    std::string q = "\"";
+    for (char c : s)
+        q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+    return q + "\"";
+}
+
+/// Distinct on white, none of them pale (gnuplot's default set has a yellow).
+const std::array<const char*, 10> k_colours = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                                               "#8c564b", "#e377c2", "#17becf", "#000080", "#808000"};
+
+bool ok(const BenchRow& r)
+{
+    return r.status == "ok" && r.knob != "reference";
+}
+
+} // namespace
+
+void mark_pareto_front(std::vector<BenchRow>& rows)
+{
+    for (BenchRow& r : rows) {
+        r.pareto = false;
+        if (!ok(r))
+            continue;
+        bool dominated = false;
+        for (const BenchRow& o : rows)
+            if (&o != &r && ok(o) && o.cpu_ms_per_second <= r.cpu_ms_per_second &&
+                o.errors.trajectory_rms <= r.errors.trajectory_rms &&
+                (o.cpu_ms_per_second < r.cpu_ms_per_second ||
+                 o.errors.trajectory_rms < r.errors.trajectory_rms))
+                dominated = true;
+        r.pareto = !dominated;
+    }
+}
+
+std::string bench_csv(const BenchSummary& s)
+{
+    std::string out =
+        "knob,value,status,steps,cpu_ms_per_step,cpu_ms_per_sim_s,setup_ms,trajectory_rms_m,trajectory_max_m,"
+        "max_penetration_m,energy_drift,constraint_error_m,frequency_error,pareto,base\n";
+    for (const BenchRow& r : s.rows) {
+        out += csv_field(r.knob) + "," + csv_field(r.value) + "," + csv_field(r.status) + "," +
+               std::to_string(r.steps) + "," + number(r.cpu_ms_per_step) + "," + number(r.cpu_ms_per_second) +
+               "," + number(r.setup_ms) + "," + number(r.errors.trajectory_rms) + "," +
+               number(r.errors.trajectory_max) + "," + number(r.max_penetration) + "," +
+               optional_number(r.errors.energy_drift) + "," + optional_number(r.constraint_error) + "," +
+               optional_number(r.errors.frequency_error) + "," + (r.pareto ? "1" : "0") + "," +
+               (r.base ? "1" : "0") + "\n";
+    }
+    return out;
+}
+
+std::string bench_markdown(const BenchSummary& s)
+{
+    std::string out = "# Speed/accuracy sweep: " + s.scene + "\n\n";
+    out += "Simulated " + number(s.seconds) + " s; cost is the median over " + std::to_string(s.repeats) +
+           " run(s) of process CPU time per step; the Pareto front compares it per simulated second (ms/step "
+           "× steps/s), so a larger dt counts as the saving it is. Errors are against the reference (" +
+           s.reference +
+           "), sampled every 10 ms of simulated time. Written by `supermodal bench`; method in "
+           "docs/speed_accuracy.md.\n\n";
+    out += "| knob | value | status | ms/step | ms per sim. s | setup ms | traj RMS [m] | traj max [m] | max "
+           "pen. [m] | "
+           "energy drift | constraint err [m] | freq. err | Pareto |\n";
+    out += "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
+    auto cell = [](const std::optional<double>& v) { return v ? number(*v) : std::string("–"); };
+    for (const BenchRow& r : s.rows) {
+        const bool ref = r.knob == "reference";
+        out += "| " + r.knob + " | " + r.value + " | " + r.status + " | " + number(r.cpu_ms_per_step) +
+               " | " + number(r.cpu_ms_per_second) + " | " + number(r.setup_ms) + " | " +
+               (ref ? "0 (ref)" : number(r.errors.trajectory_rms)) + " | " +
+               (ref ? "0 (ref)" : number(r.errors.trajectory_max)) + " | " + number(r.max_penetration) +
+               " | " + cell(r.errors.energy_drift) + " | " + cell(r.constraint_error) + " | " +
+               cell(ref ? std::optional<double>() : r.errors.frequency_error) + " | " +
+               (r.pareto ? "●" : "") + " |\n";
+    }
+    out += "\nPareto front (cheapest first):";
+    std::vector<const BenchRow*> front;
+    bool base_listed = false;
+    for (const BenchRow& r : s.rows)
+        if (r.pareto && !(r.base && base_listed)) {
+            front.push_back(&r);
+            base_listed = base_listed || r.base;
+        }
+    std::sort(front.begin(), front.end(), [](const BenchRow* a, const BenchRow* b) {
+        return a->cpu_ms_per_second < b->cpu_ms_per_second;
+    });
+    for (const BenchRow* r : front)
+        out += " " + (r->base ? std::string("the scene's own settings") : r->knob + " " + r->value) + " (" +
+               number(r->cpu_ms_per_second) + " ms/s, " + number(r->errors.trajectory_rms) + " m);";
+    out += "\n";
+    return out;
+}
+
+nlohmann::json bench_json(const BenchSummary& s)
+{
+    nlohmann::json rows = nlohmann::json::array();
+    auto opt = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+    for (const BenchRow& r : s.rows)
+        rows.push_back({{"knob", r.knob},
+                        {"value", r.value},
+                        {"status", r.status},
+                        {"steps", r.steps},
+                        {"cpu_ms_per_step", r.cpu_ms_per_step},
+                        {"cpu_ms_per_sim_s", r.cpu_ms_per_second},
+                        {"setup_ms", r.setup_ms},
+                        {"trajectory_rms_m", r.errors.trajectory_rms},
+                        {"trajectory_max_m", r.errors.trajectory_max},
+                        {"max_penetration_m", r.max_penetration},
+                        {"energy_drift", opt(r.errors.energy_drift)},
+                        {"constraint_error_m", opt(r.constraint_error)},
+                        {"frequency_error", opt(r.errors.frequency_error)},
+                        {"pareto", r.pareto},
+                        {"base", r.base}});
+    return {{"scene", s.scene},
+            {"seconds", s.seconds},
+            {"repeats", s.repeats},
+            {"reference", s.reference},
+            {"rows", rows}};
+}
+
+std::string bench_plot(const BenchSummary& s, const std::string& png_path)
+{
+    namespace fs = std::filesystem;
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+        return "gnuplot not found";
+    // One data block per knob (gnuplot's `index`), then the front as a last block.
+    std::map<std::string, std::string> blocks;
+    std::vector<std::string> order;
+    std::vector<const BenchRow*> front;
+    for (const BenchRow& r : s.rows) {
+        if (!ok(r) || !(r.errors.trajectory_rms > 0.0) || !(r.cpu_ms_per_second > 0.0))
+            continue; // a log axis has no place for zero
+        if (r.pareto)
+            front.push_back(&r);
+        // The scene's own settings appear under several knobs; they are drawn once, as their own point.
+        const std::string block = r.base ? "scene's own settings" : r.knob;
+        if (blocks.count(block) && r.base)
+            continue;
+        if (!blocks.count(block))
+            order.push_back(block);
+        blocks[block] += number(r.cpu_ms_per_second) + " " + number(r.errors.trajectory_rms) + " \"" +
+                         (r.base ? std::string() : r.value) + "\"\n";
+    }
+    if (order.empty())
+        return "no configuration ran: nothing to plot";
+    std::sort(front.begin(), front.end(), [](const BenchRow* a, const BenchRow* b) {
+        return a->cpu_ms_per_second < b->cpu_ms_per_second;
+    });
+    const std::string stem = png_path + ".tmp." + std::to_string(::getpid());
+    std::string data;
+    for (const std::string& k : order)
+        data += blocks[k] + "\n\n";
+    for (const BenchRow* r : front)
+        data += number(r->cpu_ms_per_second) + " " + number(r->errors.trajectory_rms) + " \"\"\n";
+    std::string script =
+        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
+        ".png'\n"
+        "set logscale xy\nset grid\nset key outside right top noenhanced\nset termoption noenhanced\n"
+        "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
+        "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
+        "set title 'Speed vs accuracy: " +
+        fs::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
+    script += "plot ";
+    for (size_t i = 0; i < order.size(); ++i) {
+        const bool own = order[i] == "scene's own settings";
+        script +=
+            "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
+            (own ? std::string("3 ps 3 lw 3 lc rgb 'black'")
+                 : std::to_string(i + 4) + " ps 1.6 lw 2 lc rgb '" + k_colours[i % k_colours.size()] + "'") +
+            " title \"" + order[i] + "\", ";
+        script += "'' index " + std::to_string(i) +
+                  " using 1:2:3 with labels offset 0.6,0.6 left font ',8' "
+                  "notitle, ";
+    }
+    script += "'" + stem + ".dat' index " + std::to_string(order.size()) +
+              " using 1:2 with lines lw 2 lc rgb 'black' dt 2 title 'Pareto front'\n";
+    std::string e = write_file_atomically(stem + ".dat", data);
+    if (e.empty())
+        e = write_file_atomically(stem + ".gp", script);
+    if (e.empty() && std::system(("gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0)
+        e = "gnuplot failed on " + stem + ".gp";
+    std::error_code ec;
+    if (e.empty()) {
+        fs::rename(stem + ".png", png_path, ec);
+        if (ec)
+            e = png_path + ": " + ec.message();
+    }
+    fs::remove(stem + ".dat", ec);
+    fs::remove(stem + ".gp", ec);
+    fs::remove(stem + ".png", ec);
+    return e;
+}
+
+} // namespace supermodal::cli
