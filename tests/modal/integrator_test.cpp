@@ -166,3 +166,49 @@ TEST(ModalIntegrator, DampedCentralDifferenceDecaysAtZetaOmega)
     // ζ/(2ζωt) = 0.05%; the scheme's own error is O((ωh)²) = 4e-4. 0.5% covers both (measured −2.6e-4).
     EXPECT_NEAR(rate, zeta * omega, 0.005 * zeta * omega);
 }
+
+TEST(ContactKick, SymplecticAgainstASpringWithTheHeldMapsEnergyPerKick)
+{
+    // Kick q̇ += λhQ then the exact flow, with Q = −κq taken at q_n: the one-step matrix must have
+    // det 1 at ζ = 0 (symplectic; the held map's is 1 + κ(1 − cos ωh)/ω², the stability map's energy
+    // gain); from rest, a unit Q must give the held map's energy ½(v² + ω²q²); a constant Q must have
+    // the fixed point cos(ωh/2)/ω². Tolerances: round-off of a few O(1) products, 1e-12 (1e-6 for the
+    // fixed point, whose I − Φ is ill-conditioned as ωh → 0).
+    const double h = 1e-3;
+    for (const double wh : {1e-6, 1e-3, 0.2, 1.0, 1.9}) {
+        const double omega = wh / h, kappa = 3.0 * omega * omega + 1e4;
+        const ModeStep s = sm::modal::exact_mode_step(omega, 0.0, h);
+        const double lambda = sm::modal::contact_kick_gain(omega, h);
+        ASSERT_GT(lambda, 0.0);
+        // Column j: the step from unit q (j = 0) or unit v (j = 1), kick first.
+        double m[2][2];
+        for (int j = 0; j < 2; ++j) {
+            double q = j == 0 ? 1.0 : 0.0, v = j == 1 ? 1.0 : 0.0;
+            v += lambda * h * (-kappa * q);
+            sm::modal::apply_mode_step(s, 0.0, q, v);
+            m[0][j] = q;
+            m[1][j] = v;
+        }
+        const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        EXPECT_NEAR(det, 1.0, 1e-12) << wh;
+        const double held_det = 1.0 + kappa * (1.0 - std::cos(wh)) / (omega * omega);
+        if (wh >= 0.2) { // the flaw the kick removes, visible at these ωh
+            EXPECT_GT(held_det - 1.0, 1e-3);
+        }
+        // Fixed point under constant Q = 1: x = Φ(x + (0, λh)) ⇔ (I − Φ)x = Φ(0, λh).
+        const double a = lambda * h;
+        const double r0 = s.a12 * a, r1 = s.a22 * a;
+        const double i00 = 1.0 - s.a11, i01 = -s.a12, i10 = -s.a21, i11 = 1.0 - s.a22;
+        const double d = i00 * i11 - i01 * i10;
+        const double q_fixed = (r0 * i11 - i01 * r1) / d;
+        EXPECT_NEAR(q_fixed * omega * omega, std::cos(0.5 * wh), 1e-6) << wh;
+        // Energy from rest under a unit Q: the kick's ½(λh)² (the flow keeps it) against the held map's.
+        double hq = 0.0, hv = 0.0;
+        sm::modal::apply_mode_step(s, 1.0, hq, hv);
+        const double held_energy = 0.5 * (hv * hv + omega * omega * hq * hq);
+        EXPECT_NEAR(0.5 * a * a / held_energy, 1.0, 1e-9) << wh;
+    }
+    // Past the limit: not kicked (the held map), and bad input refused.
+    EXPECT_EQ(sm::modal::contact_kick_gain(2.0 / 1e-3, 1e-3), 0.0);
+    EXPECT_EQ(sm::modal::contact_kick_gain(std::nan(""), 1e-3), 0.0);
+}

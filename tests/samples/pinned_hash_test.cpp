@@ -26,10 +26,12 @@ struct Pinned {
 // Then demo and chair: the support map of ε ≠ 1 with three powers instead of five (rounding-level).
 // Ball on board (issue #9 stability map): a contact's modal inverse mass is the weighted mean over its
 // points instead of the value at their centroid (penalty.cpp), so the board's spring moves slightly.
+// Ball on board (exact modal integrator under contact): the board's modes with ωh < 2 take the
+// contact load as a kick before the exact flow instead of held (modal_world.cpp), so they ring differently.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xadf60810e368bf63ULL},
     {"chair_with_dummy", 500, 0x9b6ffddd7c4bafb9ULL},
-    {"ball_on_board", 400, 0x357c2f203c1539abULL},
+    {"ball_on_board", 400, 0x99d9ae86325a65b3ULL},
     {"pile", 240, 0xf66c63dc00dd3679ULL},
 };
 

@@ -115,9 +115,10 @@ struct ModalBody {
     uint64_t active_changes = 0;
     double active_mode_substeps = 0.0; ///< Σ over substeps of the active count [-].
     // Derived and scratch.
-    std::vector<double> load;       ///< (r) contact generalized forces of this substep [N/√kg].
-    std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the
-                                    ///< nodes [N], body frame; projected on the modes once per substep.
+    std::vector<double> load; ///< (r) constraint generalized forces of this substep, held over it [N/√kg].
+    std::vector<double> contact_load; ///< (r) Φᵀ of this substep's contact (nodal) loads, a kick [N/√kg].
+    std::vector<double> nodal_load;   ///< (3 × lattice nodes) contact forces of this substep lumped on the
+                                      ///< nodes [N], body frame; projected on the modes once per substep.
     bool has_nodal_load = false;
     std::vector<double> host_nodal_load; ///< (3 × nodes) host point loads of this step lumped likewise [N].
     bool has_host_nodal_load = false;
