@@ -132,6 +132,8 @@ struct ModalBody {
     bool surface_stale = false;               ///< q moved since the samples were last deformed.
     double step_h = 0.0;                      ///< Substep the exact step maps below were made for [s].
     std::vector<modal::ModeStep> exact_steps; ///< (r) per-mode exact maps for step_h.
+    double contact_h = 0.0;                   ///< Substep contact_sinc was made for [s].
+    std::vector<double> contact_sinc;         ///< (r) sinc(ω_k h / 2) of modal_inverse_mass.
 };
 
 using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator, ModalBody>;
