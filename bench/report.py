@@ -68,12 +68,12 @@ def plot(prefix, rows):
     dat = prefix + ".dat"
     with open(dat, "w") as f:
         for name, pts in families.items():
-            f.write(f'"{name}"\n')
+            f.write(f'# {name}\n')  # a comment: gnuplot reads a quoted first line as bad data
             for n, ips in sorted(pts):
                 f.write(f"{n} {ips}\n")
             f.write("\n\n")
     plots = ", ".join(f'"{dat}" index {i} with linespoints title "{n}"' for i, n in enumerate(families))
-    script = (f'set terminal pngcairo size 800,500; set output "{prefix}.png"; set logscale xy; '
+    script = (f'set terminal pngcairo size 800,500 noenhanced; set output "{prefix}.png"; set logscale xy; '
               f'set xlabel "size (bodies or entities)"; set ylabel "items per second"; set key left bottom; '
               f'set grid; plot {plots}')
     subprocess.run(["gnuplot", "-e", script], check=True)
