@@ -2,6 +2,7 @@
 #include "modal/adaptive.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -36,13 +37,16 @@ ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> for
 {
     const size_t r = b.q.size();
     const double tol = b.adaptive_tolerance;
-    // Going down from the highest mode: the first count whose left-out modes reach past tol (gain) and
-    // past tol/2 (the target, also the drop threshold).
+    std::array<double, k_max_modes> reach; // per mode, computed once for both sums below
+    for (size_t k = 0; k < r; ++k)
+        reach[k] = mode_reach(b, k, force[k]);
+    // Going down from the highest mode: the first count whose left-out modes reach past the gain
+    // threshold, and past the target (also the drop threshold).
     double tail = 0.0;
     size_t need = 0, target = 0;
     bool found_target = false;
     for (size_t k = r; k-- > 0;) {
-        tail += mode_reach(b, k, force[k]);
+        tail += reach[k];
         if (!found_target && !(tail <= k_target_fraction * tol)) {
             target = k + 1;
             found_target = true;
@@ -63,7 +67,7 @@ ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> for
     ActiveChoice out;
     out.active = active;
     for (size_t k = active; k < r; ++k)
-        out.truncation += mode_reach(b, k, force[k]);
+        out.truncation += reach[k];
     return out;
 }
 

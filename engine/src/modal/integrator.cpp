@@ -123,13 +123,19 @@ void apply_mode_step(const ModeStep& s, double force, double& io_q, double& io_v
     io_v = v;
 }
 
+double half_step_sinc(double omega, double h)
+{
+    const double x = 0.5 * omega * h;
+    // sin(x)/x = 1 − x²/6 + x⁴/120 − …: the series below 1e-4 (next term < 1e-18).
+    return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
+}
+
 double contact_kick_gain(double omega, double h)
 {
     const double x = 0.5 * omega * h;
     if (!(x >= 0.0) || !(x < 0.5 * k_contact_kick_limit))
         return 0.0; // not kicked (or a bad input: no motion invented)
-    // sin(x)/x = 1 − x²/6 + x⁴/120 − …: the series below 1e-4 (next term < 1e-18).
-    return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
+    return half_step_sinc(omega, h);
 }
 
 void central_difference_step(double omega, double zeta, double h, double force, double& io_q, double& io_v)

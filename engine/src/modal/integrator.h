@@ -24,6 +24,9 @@ void apply_mode_step(const ModeStep& s, double force, double& io_q, double& io_v
 /// flow instead of being held over the step; at and past it, held (as the central-difference guard).
 inline constexpr double k_contact_kick_limit = 2.0;
 
+/// sin(ωh/2)/(ωh/2) [-]: how far a mode moves under a force held over h relative to a free mass.
+[[nodiscard]] double half_step_sinc(double omega, double h);
+
 /// The gain λ of that kick, q̇ += λ·h·Q, then the exact free flow over h (ωh < k_contact_kick_limit;
 /// 0 past it): λ = sin(ωh/2)/(ωh/2) [-]. Any λ makes kick-then-flow symplectic against a spring
 /// Q = −κq (det = 1 at ζ = 0, where the held map's is 1 + κ(1 − cos ωh)/ω²); this one gives a mode at

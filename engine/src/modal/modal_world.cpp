@@ -7,8 +7,8 @@
 #include "modal/stress.h"
 #include "world/world_impl.h"
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -218,11 +218,8 @@ double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, cons
     const LatticeWeights lw = modal_weights(basis, local);
     if (b->contact_h != h) { // per substep length, not per point: the pairs with modal bodies run serially
         b->contact_sinc.resize(r);
-        for (size_t k = 0; k < r; ++k) {
-            const double half = 0.5 * b->omega[k] * h;
-            // sinc = 1 − half²/6 + …: within 2e-9 of 1 below 1e-4
-            b->contact_sinc[k] = half > 1e-4 ? std::sin(half) / half : 1.0;
-        }
+        for (size_t k = 0; k < r; ++k)
+            b->contact_sinc[k] = modal::half_step_sinc(b->omega[k], h);
         b->contact_h = h;
     }
     // φ_k at the point for every k, nodes outer (rows of mode_shapes are contiguous): per k the same sum
