@@ -20,7 +20,7 @@ CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -D
   -DSUPERMODAL_TESTS=OFF -DSUPERMODAL_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target scene_fuzz
 mkdir -p "$build/corpus" "$build/crashes"
-cp -n tests/fuzz/corpus/*.json samples/*.json "$build/corpus/" 2>/dev/null || true
+cp -n tests/fuzz/corpus/*.json tests/fuzz/regressions/*.json samples/*.json "$build/corpus/" 2>/dev/null || true
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 set +e

@@ -84,3 +84,47 @@ TEST(Mpr, BodySupportIsTheShapeSupportMovedToTheBody)
     const sm::Vec3 got = sm::body_support(view(a, {1, 2, 3}, q), dir);
     EXPECT_LT(sm::length(got - expected), 1e-12);
 }
+
+TEST(Mpr, OrdinaryQueriesStayFarInsideTheSupportBudget)
+{
+    // Overlapping pairs over ε 0.1…2 and aspect up to 10 at random poses: smooth convex pairs converge
+    // in tens of supports (the samples' maximum is 32), so a budget of 3 × 100 + 8 never cuts a real
+    // query short. Bound: a fifth of the budget.
+    int most = 0;
+    unsigned seed = 12345;
+    auto uniform = [&seed](double lo, double hi) {
+        seed = seed * 1664525u + 1013904223u;
+        return lo + (hi - lo) * (seed >> 8) / double(1u << 24);
+    };
+    for (int i = 0; i < 100; ++i) {
+        const sm::Collider a =
+            collider({uniform(0.05, 0.5), uniform(0.05, 0.5), uniform(0.05, 0.5)}, uniform(0.1, 2.0));
+        const sm::Collider b =
+            collider({uniform(0.05, 0.5), uniform(0.05, 0.5), uniform(0.05, 0.5)}, uniform(0.1, 2.0));
+        const sm::Quat qa =
+            sm::normalized(sm::Quat{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+        const sm::Quat qb =
+            sm::normalized(sm::Quat{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+        const sm::Vec3 d{uniform(-0.1, 0.1), uniform(-0.1, 0.1), uniform(-0.1, 0.1)};
+        const sm::MprResult r = sm::mpr_penetration(view(a, d, qa), view(b, {}, qb));
+        EXPECT_TRUE(r.hit) << i; // the centres are at most 0.17 m apart, each body at least 0.05 m deep
+        EXPECT_FALSE(r.gave_up) << i;
+        most = std::max(most, r.support_calls);
+    }
+    EXPECT_LT(most, sm::k_mpr_max_support_calls / 5);
+}
+
+TEST(Mpr, AHugeBodyBesideASmallOneEndsWithinTheSupportBudget)
+{
+    // The fuzzer's hang: a 1e60 m long ellipsoid among 6 cm ones. libccd's portal refinement has no
+    // iteration cap and rounding at that scale never meets its tolerance; the support budget ends the
+    // query, reported as no overlap (the pair had to fail somehow: no double resolves 3 cm on 1e60 m).
+    const sm::Collider huge = collider({0.06, 0.04, 1e60}, 1.0), small = collider({0.06, 0.04, 0.03}, 1.0);
+    const sm::Quat qh{-0.30494454806978222, 0.80000904718307064, 0.14441348303304696, -0.49612407011353088};
+    const sm::Quat qs{0.10150388499320943, 0.80334385994625668, 0.4340158139709645, -0.39492515397357969};
+    const sm::MprResult r = sm::mpr_penetration(view(small, {-0.28578, 0.089238, 0.119869}, qs),
+                                                view(huge, {-0.287476, 1.312823, 0.116257}, qh));
+    EXPECT_TRUE(r.gave_up);
+    EXPECT_FALSE(r.hit);
+    EXPECT_LE(r.support_calls, sm::k_mpr_max_support_calls + 1);
+}

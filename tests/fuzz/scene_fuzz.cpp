@@ -1,65 +1,16 @@
 // Fuzz target for engine/src/scene (libFuzzer): any bytes in, never a crash, hang or sanitizer report.
 // A rejected input must carry an error that says where (a JSON pointer, "" for the document root, or
 // "line L, column C" for syntax); an accepted one must build a world that steps to finite state.
-#include "supermodal/body.h"
-#include "supermodal/scene.h"
-#include "supermodal/world.h"
+#include "fuzz/fuzz_case.h"
 
 #include <cstdint>
 #include <cstdlib>
-#include <string>
 #include <string_view>
-
-namespace sm = supermodal;
-
-namespace
-{
-// Enough steps to exercise every stage; few enough that a 60 s run sees ~10^5 inputs.
-constexpr int k_steps = 8;
-// Larger worlds would only measure how fast we step, not find loader bugs.
-constexpr size_t k_max_bodies = 256;
-// A modal basis on a 128³ lattice is a legitimate, minutes-long build: valid input, not a loader bug,
-// but it would trip the 10 s per-input timeout. Larger models are parsed and checked, not built.
-constexpr long k_max_modal_cells = 64;
-constexpr int k_max_modes = 24;
-
-bool cheap_to_build(const sm::Scene& scene)
-{
-    for (const sm::SceneBody& b : scene.bodies) {
-        const sm::ModalBodyDef& m = b.def.modal;
-        if (!m.enabled)
-            continue;
-        long cells = 1; // an automatic axis (0) gets up to 8 cells
-        for (int n : m.lattice)
-            cells *= n == 0 ? 8 : n;
-        if (cells > k_max_modal_cells || m.mode_count > k_max_modes)
-            return false;
-    }
-    return true;
-}
-
-bool names_a_place(const sm::Error& e)
-{
-    return e.where.empty() || e.where[0] == '/' || e.where.rfind("line ", 0) == 0;
-}
-} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
-    sm::Result<sm::Scene> scene = sm::parse_scene(text, "fuzz.json");
-    if (!scene) {
-        if (scene.error().what.empty() || !names_a_place(scene.error()))
-            std::abort();
-        return 0;
-    }
-    if (scene->bodies.size() > k_max_bodies || !cheap_to_build(*scene))
-        return 0;
-    sm::Result<sm::World> world = sm::build_world(*scene);
-    if (!world)
-        return 0;
-    for (int i = 0; i < k_steps; ++i)
-        world->step();
-    (void)world->state_hash();
+    if (supermodal::fuzz::run_scene_case(text) == supermodal::fuzz::Verdict::BadError)
+        std::abort();
     return 0;
 }

@@ -24,14 +24,29 @@ void to_ccd(const Vec3& p, ccd_vec3_t* out)
     out->v[2] = p.z;
 }
 
+// One side of a query: the body and the pair's shared count of support calls.
+struct Side {
+    const BodyView* body;
+    int* calls;
+};
+
+// libccd 2.1 caps only MPR's last phase (max_iterations); portal discovery and refinement loop until
+// a tolerance test passes, which rounding can forbid (a 1e14 m body beside a 0.03 m one hung a step
+// for minutes, found by the fuzzer). Past the budget every support is the shape's centre: each of
+// libccd's loops then finds the new point not beyond the portal and reports no overlap.
 void support_cb(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
 {
-    to_ccd(body_support(*static_cast<const BodyView*>(obj), from_ccd(*dir)), out);
+    const Side& side = *static_cast<const Side*>(obj);
+    if (++*side.calls > 2 * k_mpr_max_support_calls) {
+        to_ccd(body_shape_centre(*side.body), out);
+        return;
+    }
+    to_ccd(body_support(*side.body, from_ccd(*dir)), out);
 }
 
 void centre_cb(const void* obj, ccd_vec3_t* out)
 {
-    to_ccd(body_shape_centre(*static_cast<const BodyView*>(obj)), out);
+    to_ccd(body_shape_centre(*static_cast<const Side*>(obj)->body), out);
 }
 
 double smallest_radius(const Collider& c)
@@ -72,7 +87,12 @@ MprResult mpr_penetration(const BodyView& a, const BodyView& b)
     ccd_real_t depth = 0.0;
     ccd_vec3_t dir, pos;
     MprResult r;
-    if (ccdMPRPenetration(&a, &b, &ccd, &depth, &dir, &pos) != 0)
+    int calls = 0; // both sides count: two calls per Minkowski support
+    const Side side_a{&a, &calls}, side_b{&b, &calls};
+    const int status = ccdMPRPenetration(&side_a, &side_b, &ccd, &depth, &dir, &pos);
+    r.support_calls = calls / 2;
+    r.gave_up = calls > 2 * k_mpr_max_support_calls;
+    if (status != 0 || r.gave_up)
         return r;
     // libccd's dir moves B out of A (from A towards B); a touching contact has depth 0 and dir 0.
     const Vec3 d = from_ccd(dir);

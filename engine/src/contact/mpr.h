@@ -11,10 +11,12 @@ namespace supermodal
 
 /// Result of one MPR query of A against B.
 struct MprResult {
-    bool hit = false;   ///< The bodies overlap (depth > 0).
-    double depth = 0.0; ///< Penetration along normal [m].
-    Vec3 normal{};      ///< Unit, from B towards A, world.
-    Vec3 point{};       ///< libccd's contact position [m], world (between the two surfaces).
+    bool hit = false;      ///< The bodies overlap (depth > 0).
+    double depth = 0.0;    ///< Penetration along normal [m].
+    Vec3 normal{};         ///< Unit, from B towards A, world.
+    Vec3 point{};          ///< libccd's contact position [m], world (between the two surfaces).
+    int support_calls = 0; ///< Minkowski support evaluations the query used [-].
+    bool gave_up = false;  ///< The support budget ran out; reported as no overlap.
 };
 
 /// Portal tolerance relative to the smaller body's smallest radius [-]: the depth is found to this
@@ -22,6 +24,10 @@ struct MprResult {
 inline constexpr double k_mpr_tolerance_rel = 1e-4;
 /// Cap on portal refinement iterations [-]; a smooth superquadric pair converges in ~10–30.
 inline constexpr unsigned long k_mpr_max_iterations = 100;
+
+/// Budget of Minkowski support evaluations per query [-]: three phases of at most
+/// k_mpr_max_iterations each, plus the start. Normal queries use far fewer (MprQuery tests).
+inline constexpr int k_mpr_max_support_calls = 3 * static_cast<int>(k_mpr_max_iterations) + 8;
 
 /// Support point of a body (convex collider) along a world direction [m], world.
 [[nodiscard]] Vec3 body_support(const BodyView& body, const Vec3& direction);
