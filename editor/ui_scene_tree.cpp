@@ -15,6 +15,10 @@ const char* dynamics_tag(const SceneBody& body)
         return "plane";
     if (body.dynamics == DynamicsType::Modal)
         return "modal";
+    if (body.dynamics == DynamicsType::Full)
+        return "full";
+    if (body.dynamics == DynamicsType::Auto)
+        return "auto";
     return body.def.motion == MotionType::Dynamic  ? "rigid"
            : body.def.motion == MotionType::Static ? "static"
                                                    : "kinematic";

@@ -191,3 +191,66 @@ TEST(SceneModal, AutoIsAdaptiveModalWithTheScenesBudgetOrRigidWhereItCannotDefor
     EXPECT_FALSE(fixed->bodies[0].def.modal.enabled);
     EXPECT_EQ(fixed->accuracy.displacement, 1e-3);
 }
+
+TEST(SceneModal, FullKeepsEveryModeOfTheLatticeSoNothingIsTruncated)
+{
+    // "full": every elastic mode of the lattice, 3n − 6 for n nodes. Board on 4×1×1 20-node cells:
+    // 56 nodes, 168 dofs, 162 modes. Under a held point load the accuracy report's truncated static
+    // energy is a rounding-level fraction (the kept modes span the whole lattice: 2e-22 measured; bound
+    // 1e-9), while 12 modes leave a visible part (0.6% measured; bound 1e-3).
+    const sm::Result<sm::Scene> scene =
+        sm::parse_scene(board_scene(R"({"type": "full", "lattice": [4, 1, 1]})"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    EXPECT_EQ(scene->bodies[0].dynamics, sm::DynamicsType::Full);
+    EXPECT_EQ(scene->bodies[0].def.modal.mode_count, sm::k_all_modes);
+    const sm::Result<sm::Scene> twelve =
+        sm::parse_scene(board_scene(R"({"type": "modal", "modes": 12, "lattice": [4, 1, 1]})"));
+    ASSERT_TRUE(twelve) << twelve.error().message();
+    double fraction[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        sm::Result<sm::World> world = sm::build_world(i == 0 ? *scene : *twelve);
+        ASSERT_TRUE(world) << world.error().message();
+        const sm::Entity board = sm::find_body(*world, "board");
+        const sm::ModalBasis* basis = sm::body_modal_basis(*world, board);
+        ASSERT_NE(basis, nullptr);
+        if (i == 0) {
+            EXPECT_EQ(basis->diagnostics.dof_count, 168);
+            EXPECT_EQ(basis->mode_count, 162);
+        }
+        for (int step = 0; step < 20; ++step) {
+            sm::apply_force(*world, board, {0.0, -50.0, 10.0},
+                            sm::body_position(*world, board) + sm::Vec3{0.3, 0.019, 0});
+            world->step();
+        }
+        fraction[i] = sm::body_modal_accuracy(*world, board).truncated_fraction;
+    }
+    EXPECT_LT(fraction[0], 1e-9);
+    EXPECT_GT(fraction[1], 1e-3);
+}
+
+TEST(SceneModal, FullErrorsNameThePointer)
+{
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "full", "modes": 12})"), "/bodies/0/dynamics/modes",
+                         "keeps every mode"));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "full"})", R"("motion": "static", )"),
+                         "/bodies/0/dynamics/type", "modal dynamics need a \"dynamic\" body"));
+    // 16×4×4 20-node cells: far more than 1536 dofs, refused when the world is built.
+    const sm::Result<sm::Scene> big =
+        sm::parse_scene(board_scene(R"({"type": "full", "lattice": [16, 4, 4]})"));
+    ASSERT_TRUE(big) << big.error().message();
+    const sm::Result<sm::World> world = sm::build_world(*big);
+    ASSERT_FALSE(world);
+    EXPECT_EQ(world.error().where, "/bodies/0/dynamics");
+    EXPECT_NE(world.error().what.find("coarsen the lattice"), std::string::npos) << world.error().message();
+}
+
+TEST(SceneModal, FullRoundTripsThroughTheWriter)
+{
+    const sm::Result<sm::Scene> scene =
+        sm::parse_scene(board_scene(R"({"type": "full", "lattice": [4, 1, 1]})"));
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::Result<sm::Scene> again = sm::parse_scene(sm::scene_to_json(*scene));
+    ASSERT_TRUE(again) << again.error().message();
+    EXPECT_EQ(again->bodies[0].dynamics, sm::DynamicsType::Full);
+    EXPECT_EQ(again->bodies[0].def.modal.mode_count, sm::k_all_modes);
+}

@@ -40,7 +40,8 @@ enum class ModalIntegrator : uint8_t {
 /// shape + material + lattice + mode count and shared by every such body of the world.
 struct ModalBodyDef {
     bool enabled = false;         ///< False: a rigid body (the other fields are ignored).
-    int mode_count = 12;          ///< Elastic modes kept, r ∈ [1, 256].
+    int mode_count = 12;          ///< Elastic modes kept, r ∈ [1, 256]; 0 (k_all_modes): every elastic
+                                  ///< mode of the lattice, the full model (scene "full").
     std::array<int, 3> lattice{}; ///< Lattice cells per axis, each in [0, 128]; 0 = from the aspect ratio.
     ModalIntegrator integrator = ModalIntegrator::Exact;
     double damping_ratio = 0.01; ///< ζ of every mode [-], ≥ 0 (1 = critical).

@@ -29,6 +29,12 @@ namespace supermodal
 
 /// Largest mode_count a ModalBasisDef may ask for.
 inline constexpr int k_max_modes = 256;
+/// mode_count asking for every elastic mode of the lattice (3n − 6 for n nodes): the full lattice,
+/// nothing truncated (scene "dynamics": {"type": "full"}).
+inline constexpr int k_all_modes = 0;
+/// Most degrees of freedom (3 × lattice nodes) a k_all_modes basis may have: it is solved dense, O(n³)
+/// (1536 dofs: about 2 s), and every mode is stepped.
+inline constexpr int k_max_full_dofs = 1536;
 /// Largest cell count per lattice axis.
 inline constexpr int k_max_lattice_cells = 128;
 
@@ -57,7 +63,8 @@ struct ModalBasisDef {
     double young = 1e7;      ///< Young's modulus E [Pa], > 0.
     double poisson = 0.3;    ///< Poisson's ratio ν [-], in (−1, 0.5).
     LatticeDef lattice{};    ///< Lattice resolution and element type.
-    int mode_count = 12;     ///< Elastic modes kept, r ∈ [1, k_max_modes]; rigid modes never.
+    int mode_count = 12;     ///< Elastic modes kept, r ∈ [1, k_max_modes], or k_all_modes (every
+                             ///< elastic mode; dense; at most k_max_full_dofs); rigid modes never.
     ModalSolver solver = ModalSolver::Auto;
 };
 

@@ -37,8 +37,9 @@ struct MaterialDef {
 /// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto:
 /// modal with adaptive modes (ModalBodyDef::adaptive_tolerance = the scene's accuracy budget), so it
 /// stays rigid until its loads need modes. Auto on a body that cannot be modal (static, kinematic, a
-/// plane) is rigid.
-enum class DynamicsType : uint8_t { Rigid, Modal, Auto };
+/// plane) is rigid. Full: modal with every elastic mode of the lattice (ModalBodyDef::mode_count =
+/// k_all_modes): nothing truncated, the reference the modal trade is measured against.
+enum class DynamicsType : uint8_t { Rigid, Modal, Auto, Full };
 
 /// A scene's error budget (settings "accuracy"), for bodies with "dynamics": "auto".
 struct AccuracyDef {

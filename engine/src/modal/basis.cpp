@@ -78,8 +78,8 @@ Status validate(const ModalBasisDef& def)
         return field_error("/lattice/element_order", "expected 1 (8-node) or 2 (20-node)");
     if (def.lattice.cut_cell_subdivisions < 1 || def.lattice.cut_cell_subdivisions > 16)
         return field_error("/lattice/cut_cell_subdivisions", "expected an integer in [1, 16]");
-    if (def.mode_count < 1 || def.mode_count > k_max_modes)
-        return field_error("/mode_count", "expected a mode count in [1, 256]");
+    if (def.mode_count != k_all_modes && (def.mode_count < 1 || def.mode_count > k_max_modes))
+        return field_error("/mode_count", "expected a mode count in [1, 256], or 0 for every mode");
     if (def.solver != ModalSolver::Auto && def.solver != ModalSolver::Dense &&
         def.solver != ModalSolver::Sparse)
         return field_error("/solver", "expected auto, dense or sparse");
@@ -122,7 +122,16 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     for (int d = 0; d < 3; ++d)
         extent = std::max(extent, lat.cells[d] * lat.cell_size[d]);
     const double scale = def.young / (def.density * extent * extent);
-    Result<modal::ModeSolution> sol = modal::solve_modes(*model, def.mode_count, def.solver, scale);
+    // Every mode: the whole lattice, which only the dense solver delivers.
+    const bool all = def.mode_count == k_all_modes;
+    const int dofs = model->dof_count();
+    if (all && dofs > k_max_full_dofs)
+        return Error{"", "/lattice",
+                     "a full body's lattice has " + std::to_string(dofs) + " degrees of freedom, more than " +
+                         std::to_string(k_max_full_dofs) + " (dense solve): coarsen the lattice"};
+    const int mode_count = all ? dofs - 6 : def.mode_count;
+    Result<modal::ModeSolution> sol =
+        modal::solve_modes(*model, mode_count, all ? ModalSolver::Dense : def.solver, scale);
     if (!sol)
         return sol.error();
 
@@ -137,7 +146,7 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     b.density = def.density;
     b.young = def.young;
     b.poisson = def.poisson;
-    b.mode_count = def.mode_count;
+    b.mode_count = mode_count;
     store_modes(*model, *sol, b);
     b.kinds = modal::classify_modes(*model, sol->vectors);
 
@@ -146,7 +155,7 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     d.first_elastic_eigenvalue = sol->eigenvalues[0];
     for (const double l : sol->rigid_eigenvalues)
         d.rigid_ratio = std::max(d.rigid_ratio, std::abs(l) / d.first_elastic_eigenvalue);
-    const double last = sol->eigenvalues[def.mode_count - 1];
+    const double last = sol->eigenvalues[mode_count - 1];
     d.splits_degenerate_cluster =
         sol->next_eigenvalue > 0.0 && sol->next_eigenvalue - last <= 1e-6 * std::abs(last);
     d.sparse_solver = sol->sparse;
@@ -158,8 +167,8 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     d.aggregated_cell_count = model->aggregated_cell_count;
     d.dropped_sliver_count = model->dropped_sliver_count;
     // Per-mode residual of the eigenproblem on the full lattice: how well each kept pair solves it.
-    d.mode_residuals.resize(static_cast<size_t>(def.mode_count));
-    for (int k = 0; k < def.mode_count; ++k) {
+    d.mode_residuals.resize(static_cast<size_t>(mode_count));
+    for (int k = 0; k < mode_count; ++k) {
         const Eigen::VectorXd k_phi = model->stiffness * sol->vectors.col(k);
         const Eigen::VectorXd m_phi = model->mass * sol->vectors.col(k);
         const double scale = k_phi.norm();

@@ -224,8 +224,8 @@ double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, cons
     }
     // φ_k at the point for every k, nodes outer (rows of mode_shapes are contiguous): per k the same sum
     // in the same order as node by node.
-    std::array<double, 3 * k_max_modes> phi; // only the first 3r are used: zero just those
-    std::fill(phi.begin(), phi.begin() + static_cast<std::ptrdiff_t>(3 * r), 0.0);
+    std::vector<double>& phi = b->contact_phi; // per body: a full body has more than k_max_modes
+    phi.assign(3 * r, 0.0);
     for (int j = 0; j < lw.count; ++j) {
         const double* node = &basis.mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
         const double w = lw.weights[j];

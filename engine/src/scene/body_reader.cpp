@@ -37,9 +37,10 @@ static_assert(static_cast<int>(ModalIntegrator::Exact) == 0 &&
               static_cast<int>(ModalIntegrator::CentralDifference) == 1);
 // Both lists are in enum order, so a choice's index is its enumerator.
 const std::vector<std::string_view> k_motion_names = {"static", "kinematic", "dynamic"};
-const std::vector<std::string_view> k_dynamics_types = {"rigid", "modal", "auto"};
+const std::vector<std::string_view> k_dynamics_types = {"rigid", "modal", "auto", "full"};
 static_assert(static_cast<int>(MotionType::Static) == 0 && static_cast<int>(MotionType::Dynamic) == 2);
-static_assert(static_cast<int>(DynamicsType::Rigid) == 0 && static_cast<int>(DynamicsType::Auto) == 2);
+static_assert(static_cast<int>(DynamicsType::Rigid) == 0 && static_cast<int>(DynamicsType::Auto) == 2 &&
+              static_cast<int>(DynamicsType::Full) == 3);
 
 /// Superquadric exponents ε1, ε2: (0, 4]; ε → 0 tends to a box (0 itself divides by zero in the
 /// inside-outside function) and past 2 the body is concave.
@@ -327,7 +328,14 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
         modal.adaptive_tolerance = modal.enabled ? scene.accuracy.displacement : 0.0;
         return;
     }
-    modal.enabled = out_body.dynamics == DynamicsType::Modal;
+    if (out_body.dynamics == DynamicsType::Full) {
+        if (r.member(*dynamics, "modes") != nullptr)
+            return r.fail(
+                pointer_join(dynamics_where, "modes"),
+                "a \"full\" body keeps every mode of its lattice: leave \"modes\" out (or use \"modal\")");
+        modal.mode_count = k_all_modes;
+    }
+    modal.enabled = out_body.dynamics == DynamicsType::Modal || out_body.dynamics == DynamicsType::Full;
     if (modal.enabled && out_body.def.motion != MotionType::Dynamic)
         r.fail(type_where, "modal dynamics need a \"dynamic\" body, found motion " +
                                quote_text(k_motion_names[static_cast<size_t>(out_body.def.motion)]));

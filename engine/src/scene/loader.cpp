@@ -421,9 +421,11 @@ Result<World> build_world(const Scene& scene)
         const SceneBody& body = scene.bodies[i];
         const std::string where = scene_io::pointer_join("/bodies", i);
         // Auto bodies are modal with adaptive modes, or rigid where they cannot deform (parse_scene).
+        const bool modal_type = body.dynamics == DynamicsType::Modal || body.dynamics == DynamicsType::Full;
         if (body.dynamics == DynamicsType::Auto
                 ? body.def.modal.enabled && !(body.def.modal.adaptive_tolerance > 0.0)
-                : (body.dynamics == DynamicsType::Modal) != body.def.modal.enabled)
+                : modal_type != body.def.modal.enabled ||
+                      (body.dynamics == DynamicsType::Full) != (body.def.modal.mode_count == k_all_modes))
             return Error{scene.source, where + "/dynamics/type",
                          "dynamics type and BodyDef::modal.enabled disagree"};
         if (Status status = validate(body.def); !status)

@@ -23,7 +23,7 @@ using scene_io::Json;
 
 // Names in enum order (the loader's lists, which it static_asserts against the enums).
 const char* const k_motion_names[] = {"static", "kinematic", "dynamic"};
-const char* const k_dynamics_names[] = {"rigid", "modal", "auto"};
+const char* const k_dynamics_names[] = {"rigid", "modal", "auto", "full"};
 const char* const k_integrator_names[] = {"exact", "central_difference"};
 const char* const k_contact_paths[] = {"auto", "sampling", "support_map"};
 const char* const k_contact_stiffness[] = {"frequency", "material"};
@@ -149,7 +149,8 @@ Json body_json(const Scene& scene, const SceneBody& body)
         return j;
     Json dyn = Json::object();
     dyn["type"] = k_dynamics_names[static_cast<size_t>(body.dynamics)];
-    dyn["modes"] = d.modal.mode_count;
+    if (body.dynamics != DynamicsType::Full) // full: every mode, which "modes" cannot say
+        dyn["modes"] = d.modal.mode_count;
     // All zero is the automatic lattice, which the format spells by leaving the key out.
     if (d.modal.lattice != std::array<int, 3>{})
         dyn["lattice"] = Json::array({d.modal.lattice[0], d.modal.lattice[1], d.modal.lattice[2]});

@@ -3,6 +3,7 @@
 
 #include "core/assert.h"
 #include "modal/modal_world.h"
+#include "supermodal/modal.h"
 #include "supermodal/world.h"
 #include "world/world_impl.h"
 
@@ -127,6 +128,9 @@ Status validate(const BodyDef& def)
                          "expected a plastic strain limit > 0 (infinity: none)"};
         if (!(def.modal.adaptive_tolerance >= 0.0) || !std::isfinite(def.modal.adaptive_tolerance))
             return Error{"", "modal/adaptive_tolerance", "expected a finite displacement tolerance >= 0 m"};
+        if (def.modal.adaptive_tolerance > 0.0 && def.modal.mode_count == k_all_modes)
+            return Error{"", "modal/mode_count",
+                         "adaptive modes need a mode count in [1, 256], not every mode"};
         if (Status s = validate(modal_basis_def(def)); !s)
             return Error{"", "modal" + s.error().where, s.error().what};
     }

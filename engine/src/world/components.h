@@ -134,6 +134,7 @@ struct ModalBody {
     std::vector<modal::ModeStep> exact_steps; ///< (r) per-mode exact maps for step_h.
     double contact_h = 0.0;                   ///< Substep contact_sinc was made for [s].
     std::vector<double> contact_sinc;         ///< (r) sinc(ω_k h / 2) of modal_inverse_mass.
+    std::vector<double> contact_phi;          ///< (3r) scratch of modal_inverse_mass: φ at its point.
 };
 
 using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator, ModalBody>;
