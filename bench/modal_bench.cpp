@@ -152,3 +152,72 @@ static void BM_Modal_DeformPoints(benchmark::State& st)
     st.SetItemsProcessed(st.iterations() * k_points);
 }
 BENCHMARK(BM_Modal_DeformPoints)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMicrosecond);
+
+// A 10k-vertex render mesh on the board, the way the renderer deforms it: the modes summed once per
+// lattice node (modal_nodal_displacements), then each vertex from its 20 weights (interpolate_nodal)
+// added to its rest position. Counter GB/s: the bytes a vertex must move (its LatticeWeights, rest
+// position in, position out) per second; compare with BM_Modal_MeshStreamFloor.
+static void BM_Modal_DeformMesh(benchmark::State& st)
+{
+    sm::ModalBasisDef def = board_def(16, 1, 1, 2);
+    def.mode_count = static_cast<int>(st.range(0));
+    const sm::Result<sm::ModalBasis> b = sm::build_modal_basis(def);
+    if (!b) {
+        st.SkipWithError(b.error().message().c_str());
+        return;
+    }
+    constexpr int k_vertices = 10'000;
+    std::vector<sm::LatticeWeights> weights;
+    std::vector<sm::Vec3> rest, out(k_vertices), nodal;
+    for (int i = 0; i < k_vertices; ++i) {
+        const double t = (i + 0.5) / k_vertices;
+        rest.push_back({0.5 * std::cos(9.0 * t), 0.019 * std::sin(37.0 * t), 0.0445 * std::cos(53.0 * t)});
+        weights.push_back(sm::modal_weights(*b, rest.back()));
+    }
+    std::vector<double> q(b->mode_count);
+    for (int k = 0; k < b->mode_count; ++k)
+        q[k] = 1e-3 / (k + 1);
+    for (auto _ : st) {
+        sm::modal_nodal_displacements(*b, q, nodal);
+        for (int i = 0; i < k_vertices; ++i)
+            out[i] = rest[i] + sm::interpolate_nodal(weights[i], nodal);
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    const double bytes = k_vertices * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
+    st.counters["GB"] = benchmark::Counter(bytes * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
+    st.counters["nodes"] = static_cast<double>(nodal.size());
+    st.SetItemsProcessed(st.iterations() * k_vertices);
+}
+BENCHMARK(BM_Modal_DeformMesh)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMicrosecond);
+
+// The floor for the same bytes: read every vertex's LatticeWeights and rest position, write a position
+// (the sum of a few of the bytes read, so nothing is optimised away), no modal work.
+static void BM_Modal_MeshStreamFloor(benchmark::State& st)
+{
+    constexpr int k_vertices = 10'000;
+    std::vector<sm::LatticeWeights> weights(k_vertices);
+    std::vector<sm::Vec3> rest(k_vertices), out(k_vertices);
+    for (int i = 0; i < k_vertices; ++i) {
+        weights[i].count = 20;
+        for (int a = 0; a < 20; ++a) {
+            weights[i].nodes[a] = a;
+            weights[i].weights[a] = 0.05;
+        }
+        rest[i] = {1.0 * i, 2.0, 3.0};
+    }
+    for (auto _ : st) {
+        for (int i = 0; i < k_vertices; ++i) {
+            const sm::LatticeWeights& w = weights[i];
+            double s = 0.0;
+            for (int a = 0; a < 20; ++a)
+                s += w.weights[a] + w.nodes[a];
+            out[i] = rest[i] + sm::Vec3{s, 0.0, 0.0};
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    const double bytes = k_vertices * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
+    st.counters["GB"] = benchmark::Counter(bytes * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Modal_MeshStreamFloor)->Unit(benchmark::kMicrosecond);

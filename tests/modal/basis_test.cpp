@@ -162,6 +162,28 @@ TEST(ModalBasis, DisplacementInterpolatesTheModeShapes)
     EXPECT_EQ(two, three);
 }
 
+TEST(ModalBasis, NodalThenInterpolatedEqualsTheDirectDisplacement)
+{
+    // The render mesh path (modes summed per node once, then weights per vertex) is the same sum in
+    // another order: equal to rounding, 1e-15 relative to the largest displacement.
+    const sm::ModalBasis b = build_or_die(test::board_def({4, 1, 1}, 3));
+    const std::vector<double> q{0.3, -1.0, 2.0};
+    std::vector<sm::Vec3> nodal;
+    sm::modal_nodal_displacements(b, q, nodal);
+    ASSERT_EQ(nodal.size(), b.node_positions.size());
+    double largest = 0.0, worst = 0.0;
+    for (int i = 0; i < 200; ++i) {
+        const double t = (i + 0.5) / 200;
+        const sm::Vec3 p{0.5 * std::cos(9.0 * t), 0.019 * std::sin(37.0 * t), 0.0445 * std::cos(53.0 * t)};
+        const sm::LatticeWeights w = sm::modal_weights(b, p);
+        const sm::Vec3 direct = sm::modal_displacement(b, w, q);
+        largest = std::max(largest, sm::length(direct));
+        worst = std::max(worst, sm::length(sm::interpolate_nodal(w, nodal) - direct));
+    }
+    EXPECT_GT(largest, 0.0);
+    EXPECT_LT(worst, 1e-15 * largest * 20); // 20 weights, each rounding once more
+}
+
 TEST(ModalBasis, SphereMatchesLambsTorsionalMode)
 {
     // A free elastic sphere's lowest mode is Lamb's torsional ₀T₂, ω R / c_s = 2.5011 (root of
@@ -254,7 +276,9 @@ TEST(ModalBasis, ValidateNamesTheBadField)
     EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.lattice.element_order = 3; }), "/lattice/element_order");
     EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.lattice.cut_cell_subdivisions = 0; }),
               "/lattice/cut_cell_subdivisions");
-    EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.mode_count = 0; }), "/mode_count");
+    EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.mode_count = -1; }), "/mode_count");
+    EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.mode_count = 257; }), "/mode_count");
+    EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.mode_count = sm::k_all_modes; }), "ok"); // every mode
     EXPECT_EQ(where([](sm::ModalBasisDef& d) { d.shape.type = sm::ShapeType::Plane; }), "/shape/type");
     EXPECT_STREQ(sm::mode_kind_name(sm::ModeKind::Torsion), "torsion");
 }

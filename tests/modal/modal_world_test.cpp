@@ -463,7 +463,11 @@ TEST(ModalWorld, RefusesBadModalDefs)
     sm::BodyDef def = board_body(6, sm::ModalIntegrator::Exact, 0.0);
     def.modal.damping_ratio = -1.0;
     EXPECT_EQ(sm::validate(def).error().where, "modal/damping_ratio");
-    def = board_body(0, sm::ModalIntegrator::Exact, 0.0);
+    def = board_body(-1, sm::ModalIntegrator::Exact, 0.0);
+    EXPECT_EQ(sm::validate(def).error().where, "modal/mode_count");
+    def = board_body(sm::k_all_modes, sm::ModalIntegrator::Exact, 0.0); // every mode: valid...
+    EXPECT_TRUE(sm::validate(def));
+    def.modal.adaptive_tolerance = 1e-3; // ...but not adaptive
     EXPECT_EQ(sm::validate(def).error().where, "modal/mode_count");
     def = board_body(6, sm::ModalIntegrator::Exact, 0.0);
     def.motion = sm::MotionType::Kinematic;

@@ -157,6 +157,13 @@ struct LatticeWeights {
 /// Displacement [m], shape frame, of a rest-shape point [m] for modal amplitudes q [√kg·m].
 [[nodiscard]] Vec3 modal_displacement(const ModalBasis& basis, const Vec3& point_shape,
                                       std::span<const double> q);
+/// Displacement [m] of every lattice node for amplitudes q (fewer than mode_count: the rest are zero),
+/// into out (resized to the node count): 3·r multiply-adds per node, once per frame. Then each of many
+/// points costs 3·count multiply-adds (interpolate_nodal) instead of 3·count·r: how a render mesh of
+/// 10k vertices deforms (docs/modal.md "Deforming a render mesh").
+void modal_nodal_displacements(const ModalBasis& basis, std::span<const double> q, std::vector<Vec3>& out);
+/// Displacement [m] of a point with precomputed weights from modal_nodal_displacements' output.
+[[nodiscard]] Vec3 interpolate_nodal(const LatticeWeights& weights, std::span<const Vec3> nodal);
 
 /// Shares bases between identical bodies: keyed by every field of the def (shape, material, lattice,
 /// mode count, solver), compared exactly. Thread-safe; a build runs outside the lock, so two threads

@@ -212,6 +212,32 @@ Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights, 
     return u;
 }
 
+void modal_nodal_displacements(const ModalBasis& basis, std::span<const double> q, std::vector<Vec3>& out)
+{
+    const int r = basis.mode_count;
+    const int used = std::min(r, static_cast<int>(q.size()));
+    out.resize(basis.node_positions.size());
+    for (size_t node = 0; node < out.size(); ++node) {
+        const double* phi = &basis.mode_shapes[node * 3 * static_cast<size_t>(r)];
+        Vec3 u{};
+        for (int d = 0; d < 3; ++d) {
+            double s = 0.0;
+            for (int k = 0; k < used; ++k)
+                s += phi[d * r + k] * q[k];
+            u[d] = s;
+        }
+        out[node] = u;
+    }
+}
+
+Vec3 interpolate_nodal(const LatticeWeights& weights, std::span<const Vec3> nodal)
+{
+    Vec3 u{};
+    for (int a = 0; a < weights.count; ++a)
+        u += weights.weights[a] * nodal[static_cast<size_t>(weights.nodes[a])];
+    return u;
+}
+
 Vec3 modal_displacement(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q)
 {
     return modal_displacement(basis, modal_weights(basis, point_shape), q);

@@ -161,8 +161,9 @@ void ModalSkin::update(double alpha, double scale)
     for (size_t k = 0; k < m_q.size(); ++k)
         m_q[k] = scale * ((1.0 - alpha) * m_prev_q[k] + alpha * m_cur_q[k]);
     m_positions.resize(rest.positions.size());
+    modal_nodal_displacements(*m_basis, m_q, m_nodal); // the modes once per node, then 20 weights per vertex
     for (size_t i = 0; i < rest.positions.size(); ++i)
-        m_positions[i] = rest.positions[i] + modal_displacement(*m_basis, m_weights[i], m_q);
+        m_positions[i] = rest.positions[i] + interpolate_nodal(m_weights[i], m_nodal);
     // Keep the analytic rest normals (sharp superquadric edges stay sharp) and add how much the faces
     // around each vertex turned.
     face_normals_per_vertex(m_positions, rest.indices, m_face_normals);

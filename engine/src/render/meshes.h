@@ -74,6 +74,7 @@ class ModalSkin
     const ModalBasis* m_basis;             ///< Owned by the world's basis cache.
     std::vector<LatticeWeights> m_weights; ///< Per vertex, computed once.
     std::vector<double> m_prev_q, m_cur_q, m_q;
+    std::vector<Vec3> m_nodal; ///< Per lattice node, this frame: the modes summed once.
     uint64_t m_step = ~uint64_t{0};
     std::vector<Vec3> m_positions, m_face_normals;
     std::vector<float> m_vertices;
