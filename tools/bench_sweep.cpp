@@ -117,6 +117,15 @@ std::vector<BenchConfig> make_sweep(const Scene& scene, const BenchBase& base,
             for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.mode_count = r; });
             out.push_back(std::move(c));
         }
+    if (wanted("modes") && modal) { // every mode of the lattice: "full" (refused above 1536 dofs)
+        BenchConfig c = config(scene, "modes", "full");
+        for (size_t i : base.modal_indices) {
+            c.scene.bodies[i].dynamics = DynamicsType::Full;
+            c.scene.bodies[i].def.modal.mode_count = k_all_modes;
+            c.scene.bodies[i].def.modal.adaptive_tolerance = 0.0;
+        }
+        out.push_back(std::move(c));
+    }
     if (wanted("lattice") && modal)
         for (double f : {0.5, 1.0, 1.5}) {
             BenchConfig c = config(scene, "lattice", factor_label(f));
