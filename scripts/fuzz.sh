@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader with libFuzzer (clang from Debian) for SECONDS (default 60), with the seed
-# corpus (tests/fuzz/corpus, samples/) and the format's dictionary. New crashes land in
-# build-fuzz/crashes/; turn each into a regression test in tests/scene/loader_test.cpp.
+# Fuzzes with libFuzzer (clang from Debian) for SECONDS (default 60). TARGET (default scene_fuzz): the
+# scene loader, with the seed corpus (tests/fuzz/corpus, tests/fuzz/regressions, samples/) and the
+# format's dictionary; or mesh_fuzz: mesh import (tests/fuzz/mesh_corpus, each seed behind the byte that
+# picks its extension). New crashes land in build-fuzz/crashes/; a fixed one goes to
+# tests/fuzz/regressions/ (replayed by ctest, FuzzReplay.*).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
+target=${2:-scene_fuzz}
+case "$target" in scene_fuzz | mesh_fuzz) ;; *) echo "fuzz: unknown target '$target' (scene_fuzz, mesh_fuzz)" >&2; exit 2 ;; esac
 
 ./scripts/deps.sh
 need=()
@@ -18,19 +22,34 @@ fi
 build=${SUPERMODAL_FUZZ_BUILD_DIR:-build-fuzz}
 CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERMODAL_FUZZ=ON \
   -DSUPERMODAL_TESTS=OFF -DSUPERMODAL_BENCH=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target scene_fuzz
-mkdir -p "$build/corpus" "$build/crashes"
-cp -n tests/fuzz/corpus/*.json tests/fuzz/regressions/*.json samples/*.json "$build/corpus/" 2>/dev/null || true
+cmake --build "$build" -j "$(nproc)" --target "$target"
+mkdir -p "$build/crashes"
+if [ "$target" = scene_fuzz ]; then
+  corpus=$build/corpus log=$build/fuzz.log extra=(-dict=tests/fuzz/scene.dict)
+  mkdir -p "$corpus"
+  cp -n tests/fuzz/corpus/*.json tests/fuzz/regressions/*.json samples/*.json "$corpus/" 2>/dev/null || true
+else
+  corpus=$build/mesh_corpus log=$build/mesh_fuzz.log extra=()
+  mkdir -p "$corpus"
+  i=0
+  for ext in obj stl ply gltf glb fbx; do # the harness's k_extensions order
+    for seed in tests/fuzz/mesh_corpus/*."$ext"; do
+      [ -e "$seed" ] || continue
+      { printf "\\$(printf %03o "$i")"; cat "$seed"; } >"$corpus/seed_$(basename "$seed")"
+    done
+    i=$((i + 1))
+  done
+fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 set +e
-"$build/tests/fuzz/scene_fuzz" "$build/corpus" -dict=tests/fuzz/scene.dict -max_total_time="$seconds" \
+"$build/tests/fuzz/$target" "$corpus" "${extra[@]}" -max_total_time="$seconds" \
   -timeout=10 -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$build/crashes/" -print_final_stats=1 \
-  >"$build/fuzz.log" 2>&1
+  >"$log" 2>&1
 status=$?
 set -e
-grep -E "^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==ERROR|SUMMARY)" "$build/fuzz.log" || true
+grep -E "^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==ERROR|SUMMARY)" "$log" || true
 if [ "$status" -ne 0 ]; then
-  echo "fuzz: libFuzzer exited $status; see $build/fuzz.log and $build/crashes/" >&2
+  echo "fuzz: libFuzzer exited $status; see $log and $build/crashes/" >&2
   exit "$status"
 fi
