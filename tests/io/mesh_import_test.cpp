@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <sstream>
 #include <string>
 
 namespace sm = supermodal;
@@ -142,4 +143,46 @@ TEST(MeshImport, ExplicitScaleAndUpAxis)
     }
     // A proper rotation keeps the winding: the volume stays positive and scales by 1e-9.
     EXPECT_NEAR(sm::mesh_volume(got->mesh) / (1e-9 * sm::mesh_volume(src)), 1.0, 1e-6);
+}
+
+TEST(MeshImport, MalformedPlyHeaderIsRefusedBeforeAssimpLoopsOnIt)
+{
+    // The mesh fuzzer's hang: a PLY whose "element" line is broken by binary bytes made Debian's assimp
+    // 5.2 seek and read at the end of the file forever. The header check refuses it with its line.
+    const std::string hang = std::string(SM_SOURCE_DIR) + "/tests/fuzz/mesh_regressions/hang_ply_header.ply";
+    const sm::Result<sm::ImportedMesh> m = sm::import_mesh(hang);
+    ASSERT_FALSE(m);
+    EXPECT_NE(m.error().what.find("PLY header line 3"), std::string::npos) << m.error().message();
+
+    const fs::path dir = temp_dir();
+    auto refused = [&](const std::string& text, const char* name) {
+        const fs::path path = dir / name;
+        std::ofstream(path, std::ios::binary) << text;
+        const sm::Result<sm::ImportedMesh> r = sm::import_mesh(path.string());
+        return r ? std::string("accepted") : r.error().what;
+    };
+    const std::string tail = "property float x\nproperty float y\nproperty float z\nend_header\n";
+    EXPECT_NE(refused("ply\nformat ascii 1.0\nelement vertex many\n" + tail, "count.ply").find("line 3"),
+              std::string::npos);
+    EXPECT_NE(
+        refused("ply\nformat ascii 1.0\nelement vertex 3\n", "short.ply").find("ends before end_header"),
+        std::string::npos);
+    EXPECT_NE(refused("ply\nelement vertex 3\n" + tail, "noformat.ply").find("no format line"),
+              std::string::npos);
+    // Content decides, not the extension: a PLY named .obj is checked too.
+    EXPECT_NE(
+        refused("ply\nformat ascii 1.0\nelemen\x01t vertex 3\n" + tail, "ply_inside.obj").find("line 3"),
+        std::string::npos);
+    // A comment may hold any UTF-8; the well-formed PLY of the other tests still loads.
+    const sm::TriangleMesh src = source_mesh();
+    const std::string good = write_ply(src);
+    std::string text;
+    {
+        std::ifstream in(good);
+        std::stringstream s;
+        s << in.rdbuf();
+        text = s.str();
+    }
+    text.insert(text.find("element"), "comment made in Zürich\n");
+    EXPECT_EQ(refused(text, "comment.ply"), "accepted");
 }

@@ -3,6 +3,7 @@
 // then scaled to metres and turned so the file's up axis becomes +Y. assimp's own unit and axis
 // post-steps are not used: the file's metadata is read here so the choice is visible (ImportedMesh).
 #include "io/mesh_weld.h"
+#include "io/ply_header.h"
 #include "supermodal/mesh_io.h"
 
 #include <algorithm>
@@ -196,6 +197,12 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
         return fail(path, "cannot open for reading");
     if (fs::file_size(path, ec) == 0)
         return fail(path, "file is empty");
+    // By content, not extension: assimp also picks its PLY reader by the magic line.
+    if (std::ifstream in(path, std::ios::binary); looks_like_ply(in)) {
+        in.seekg(0);
+        if (const std::optional<std::string> problem = ply_header_problem(in))
+            return fail(path, *problem);
+    }
 
     std::string ext = fs::path(path).extension().string();
     if (!ext.empty())

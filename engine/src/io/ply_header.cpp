@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+#include "io/ply_header.h"
+
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
+namespace supermodal
+{
+namespace
+{
+
+constexpr std::streamsize k_max_header_bytes = 1 << 20;
+
+std::vector<std::string> split(const std::string& line)
+{
+    std::istringstream s(line);
+    std::vector<std::string> words;
+    for (std::string w; s >> w;)
+        words.push_back(w);
+    return words;
+}
+
+bool is_count(const std::string& word)
+{
+    return !word.empty() && word.size() <= 10 &&
+           std::all_of(word.begin(), word.end(), [](unsigned char c) { return c >= '0' && c <= '9'; });
+}
+
+bool is_text(const std::string& line, bool any_utf8)
+{
+    return std::all_of(line.begin(), line.end(), [&](unsigned char c) {
+        return (c >= 0x20 && c < 0x7f) || c == '\t' || c == '\r' || (any_utf8 && c >= 0x80);
+    });
+}
+
+std::string at(int line, const std::string& what)
+{
+    return "PLY header line " + std::to_string(line) + ": " + what;
+}
+
+} // namespace
+
+bool looks_like_ply(std::istream& in)
+{
+    char magic[4] = {};
+    in.read(magic, 4);
+    return in.gcount() == 4 && magic[0] == 'p' && magic[1] == 'l' && magic[2] == 'y' &&
+           (magic[3] == '\n' || magic[3] == '\r');
+}
+
+std::optional<std::string> ply_header_problem(std::istream& in)
+{
+    std::string line;
+    std::streamsize read = 0;
+    int number = 0;
+    bool format = false;
+    while (std::getline(in, line)) {
+        ++number;
+        read += static_cast<std::streamsize>(line.size()) + 1;
+        if (read > k_max_header_bytes)
+            return at(number, "no end_header in the first 1 MiB");
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        if (number == 1) {
+            if (line != "ply")
+                return at(1, "expected \"ply\"");
+            continue;
+        }
+        const std::vector<std::string> w = split(line);
+        const bool free_text = !w.empty() && (w[0] == "comment" || w[0] == "obj_info");
+        if (!is_text(line, free_text))
+            return at(number, "not text (a byte outside printable ASCII)");
+        if (w.empty() || free_text)
+            continue;
+        if (w[0] == "end_header")
+            return format ? std::nullopt : std::optional<std::string>(at(number, "no format line before it"));
+        if (w[0] == "format") {
+            if (w.size() != 3 ||
+                (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+                return at(number, "expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
+            format = true;
+        } else if (w[0] == "element") {
+            if (w.size() != 3 || !is_count(w[2]))
+                return at(number, "expected \"element NAME COUNT\" with a whole COUNT");
+        } else if (w[0] == "property") {
+            if (w.size() < 3)
+                return at(number, "expected \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
+        } else {
+            return at(number, "unknown keyword \"" + w[0] + "\"");
+        }
+    }
+    return at(number, "the file ends before end_header");
+}
+
+} // namespace supermodal
