@@ -182,6 +182,32 @@ bool parse_up_axis(const std::string& name, UpAxis& out)
     return false;
 }
 
+namespace
+{
+// Sets each mesh's primitive-type flags from its faces (1, 2, 3 or more indices).
+void recompute_primitive_types(aiScene& scene)
+{
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+        aiMesh* mesh = scene.mMeshes[m];
+        if (mesh == nullptr)
+            continue;
+        unsigned types = 0;
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const unsigned n = mesh->mFaces[f].mNumIndices;
+            // An empty face (a malformed file can make one) is no type: flagging it a polygon is what
+            // trips assimp's triangulation assert.
+            if (n == 0)
+                continue;
+            types |= n == 1   ? aiPrimitiveType_POINT
+                     : n == 2 ? aiPrimitiveType_LINE
+                     : n == 3 ? aiPrimitiveType_TRIANGLE
+                              : aiPrimitiveType_POLYGON;
+        }
+        mesh->mPrimitiveTypes = types;
+    }
+}
+} // namespace
+
 Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
 {
     if (!std::isfinite(def.scale) || def.scale < 0.0)
@@ -214,12 +240,20 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
     // The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
     // assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
     // Validation rejects out-of-range indices and similar corruption before anything reads them.
-    unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType;
-    flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
-    const aiScene* scene = importer.ReadFile(path, flags);
+    // Read and validate first, then post-process: Debian's assimp 5.2 has its asserts on, and its
+    // triangulation aborts the process when a reader's primitive-type flags disagree with the faces
+    // (a malformed PLY did, found by tests/fuzz/mesh_fuzz.cpp); the flags are recomputed in between.
+    const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+    const std::string cannot =
+        std::string("cannot read mesh (") + (ext.empty() ? "no extension" : ext) + "): ";
     if (scene == nullptr)
-        return fail(path, std::string("cannot read mesh (") + (ext.empty() ? "no extension" : ext) +
-                              "): " + importer.GetErrorString());
+        return fail(path, cannot + importer.GetErrorString());
+    recompute_primitive_types(const_cast<aiScene&>(*scene)); // the importer's own scene, not shared
+    unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
+    flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
+    scene = importer.ApplyPostProcessing(flags);
+    if (scene == nullptr)
+        return fail(path, cannot + importer.GetErrorString());
     if (scene->mRootNode == nullptr)
         return fail(path, "the file has no node tree");
 
