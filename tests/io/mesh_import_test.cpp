@@ -173,6 +173,9 @@ TEST(MeshImport, MalformedPlyHeaderIsRefusedBeforeAssimpLoopsOnIt)
     EXPECT_NE(
         refused("ply\nformat ascii 1.0\nelemen\x01t vertex 3\n" + tail, "ply_inside.obj").find("line 3"),
         std::string::npos);
+    // "ply" and then junk on the magic line: assimp reads it as PLY (and looped on one); refused.
+    EXPECT_NE(refused(std::string("ply\0\0asc\nformat ascii 1.0\n", 26) + tail, "magic.ply").find("line 1"),
+              std::string::npos);
     // A comment may hold any UTF-8; the well-formed PLY of the other tests still loads.
     const sm::TriangleMesh src = source_mesh();
     const std::string good = write_ply(src);

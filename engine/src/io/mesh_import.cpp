@@ -184,6 +184,14 @@ bool parse_up_axis(const std::string& name, UpAxis& out)
 
 namespace
 {
+bool has_ply_extension(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".ply";
+}
+
 // Sets each mesh's primitive-type flags from its faces (1, 2, 3 or more indices).
 void recompute_primitive_types(aiScene& scene)
 {
@@ -223,8 +231,8 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
         return fail(path, "cannot open for reading");
     if (fs::file_size(path, ec) == 0)
         return fail(path, "file is empty");
-    // By content, not extension: assimp also picks its PLY reader by the magic line.
-    if (std::ifstream in(path, std::ios::binary); looks_like_ply(in)) {
+    // By extension or content: assimp picks its PLY reader by either.
+    if (std::ifstream in(path, std::ios::binary); looks_like_ply(in) || has_ply_extension(path)) {
         in.seekg(0);
         if (const std::optional<std::string> problem = ply_header_problem(in))
             return fail(path, *problem);

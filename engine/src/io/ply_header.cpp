@@ -43,10 +43,10 @@ std::string at(int line, const std::string& what)
 
 bool looks_like_ply(std::istream& in)
 {
-    char magic[4] = {};
-    in.read(magic, 4);
-    return in.gcount() == 4 && magic[0] == 'p' && magic[1] == 'l' && magic[2] == 'y' &&
-           (magic[3] == '\n' || magic[3] == '\r');
+    // Three bytes, whatever follows: assimp's PLY reader also takes "ply" followed by binary junk.
+    char magic[3] = {};
+    in.read(magic, 3);
+    return in.gcount() == 3 && magic[0] == 'p' && magic[1] == 'l' && magic[2] == 'y';
 }
 
 std::optional<std::string> ply_header_problem(std::istream& in)

@@ -11,7 +11,7 @@
 namespace supermodal
 {
 
-/// True when the stream starts with the PLY magic line ("ply"); reads from the current position.
+/// True when the stream starts with "ply" (assimp takes that as PLY); reads from the current position.
 [[nodiscard]] bool looks_like_ply(std::istream& in);
 /// What is wrong with the PLY header read from `in` (from its start), or nothing: "line N: ...". Checks
 /// the magic line, that header lines are printable text (comments may hold any UTF-8), the format line,
