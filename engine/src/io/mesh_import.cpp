@@ -192,8 +192,10 @@ bool has_ply_extension(const std::string& path)
     return ext == ".ply";
 }
 
-// Sets each mesh's primitive-type flags from its faces (1, 2, 3 or more indices).
-void recompute_primitive_types(aiScene& scene)
+// Sets each mesh's primitive-type flags from its faces (1, 2, 3 or more indices); false when a face has
+// no index at all, which nothing downstream handles (assimp's triangulation asserts on such a mesh
+// whatever its flags say).
+bool recompute_primitive_types(aiScene& scene)
 {
     for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
         aiMesh* mesh = scene.mMeshes[m];
@@ -202,10 +204,8 @@ void recompute_primitive_types(aiScene& scene)
         unsigned types = 0;
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const unsigned n = mesh->mFaces[f].mNumIndices;
-            // An empty face (a malformed file can make one) is no type: flagging it a polygon is what
-            // trips assimp's triangulation assert.
             if (n == 0)
-                continue;
+                return false;
             types |= n == 1   ? aiPrimitiveType_POINT
                      : n == 2 ? aiPrimitiveType_LINE
                      : n == 3 ? aiPrimitiveType_TRIANGLE
@@ -213,6 +213,7 @@ void recompute_primitive_types(aiScene& scene)
         }
         mesh->mPrimitiveTypes = types;
     }
+    return true;
 }
 } // namespace
 
@@ -256,7 +257,8 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
         std::string("cannot read mesh (") + (ext.empty() ? "no extension" : ext) + "): ";
     if (scene == nullptr)
         return fail(path, cannot + importer.GetErrorString());
-    recompute_primitive_types(const_cast<aiScene&>(*scene)); // the importer's own scene, not shared
+    if (!recompute_primitive_types(const_cast<aiScene&>(*scene))) // the importer's own scene, not shared
+        return fail(path, cannot + "a face has no vertex indices (malformed file)");
     unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
     flags |= def.weld_vertices ? aiProcess_JoinIdenticalVertices : aiProcess_GenSmoothNormals;
     scene = importer.ApplyPostProcessing(flags);
