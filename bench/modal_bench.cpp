@@ -122,34 +122,52 @@ static void BM_Modal_SphereBuild(benchmark::State& st)
 }
 BENCHMARK(BM_Modal_SphereBuild)->DenseRange(3, 8)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Arg: mode count. Deforms 10k points with precomputed weights (the per-step cost of a surface).
-static void BM_Modal_DeformPoints(benchmark::State& st)
+// The board with r modes and 10k points spread over it (rest positions and their lattice weights),
+// amplitudes 1e-3/(k+1): what both deformation benchmarks deform. False (and the benchmark skipped)
+// when the basis cannot be built.
+struct DeformCase {
+    sm::ModalBasis basis;
+    std::vector<sm::Vec3> rest;
+    std::vector<sm::LatticeWeights> weights;
+    std::vector<double> q;
+};
+constexpr int k_deform_points = 10'000;
+
+static bool make_deform_case(benchmark::State& st, DeformCase& c)
 {
     sm::ModalBasisDef def = board_def(16, 1, 1, 2);
     def.mode_count = static_cast<int>(st.range(0));
-    const sm::Result<sm::ModalBasis> b = sm::build_modal_basis(def);
+    sm::Result<sm::ModalBasis> b = sm::build_modal_basis(def);
     if (!b) {
         st.SkipWithError(b.error().message().c_str());
+        return false;
+    }
+    c.basis = std::move(*b);
+    for (int i = 0; i < k_deform_points; ++i) {
+        const double t = (i + 0.5) / k_deform_points;
+        c.rest.push_back({0.5 * std::cos(9.0 * t), 0.019 * std::sin(37.0 * t), 0.0445 * std::cos(53.0 * t)});
+        c.weights.push_back(sm::modal_weights(c.basis, c.rest.back()));
+    }
+    c.q.resize(static_cast<size_t>(c.basis.mode_count));
+    for (int k = 0; k < c.basis.mode_count; ++k)
+        c.q[k] = 1e-3 / (k + 1);
+    return true;
+}
+
+// Arg: mode count. Deforms 10k points with precomputed weights (the per-step cost of a surface).
+static void BM_Modal_DeformPoints(benchmark::State& st)
+{
+    DeformCase c;
+    if (!make_deform_case(st, c))
         return;
-    }
-    constexpr int k_points = 10'000;
-    std::vector<sm::LatticeWeights> weights;
-    for (int i = 0; i < k_points; ++i) {
-        const double t = (i + 0.5) / k_points;
-        weights.push_back(sm::modal_weights(
-            *b, {0.5 * std::cos(9.0 * t), 0.019 * std::sin(37.0 * t), 0.0445 * std::cos(53.0 * t)}));
-    }
-    std::vector<double> q(b->mode_count);
-    for (int k = 0; k < b->mode_count; ++k)
-        q[k] = 1e-3 / (k + 1);
-    std::vector<sm::Vec3> out(k_points);
+    std::vector<sm::Vec3> out(k_deform_points);
     for (auto _ : st) {
-        for (int i = 0; i < k_points; ++i)
-            out[i] = sm::modal_displacement(*b, weights[i], q);
+        for (int i = 0; i < k_deform_points; ++i)
+            out[i] = sm::modal_displacement(c.basis, c.weights[i], c.q);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
     }
-    st.SetItemsProcessed(st.iterations() * k_points);
+    st.SetItemsProcessed(st.iterations() * k_deform_points);
 }
 BENCHMARK(BM_Modal_DeformPoints)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMicrosecond);
 
@@ -159,35 +177,21 @@ BENCHMARK(BM_Modal_DeformPoints)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMic
 // position in, position out) per second; compare with BM_Modal_MeshStreamFloor.
 static void BM_Modal_DeformMesh(benchmark::State& st)
 {
-    sm::ModalBasisDef def = board_def(16, 1, 1, 2);
-    def.mode_count = static_cast<int>(st.range(0));
-    const sm::Result<sm::ModalBasis> b = sm::build_modal_basis(def);
-    if (!b) {
-        st.SkipWithError(b.error().message().c_str());
+    DeformCase c;
+    if (!make_deform_case(st, c))
         return;
-    }
-    constexpr int k_vertices = 10'000;
-    std::vector<sm::LatticeWeights> weights;
-    std::vector<sm::Vec3> rest, out(k_vertices), nodal;
-    for (int i = 0; i < k_vertices; ++i) {
-        const double t = (i + 0.5) / k_vertices;
-        rest.push_back({0.5 * std::cos(9.0 * t), 0.019 * std::sin(37.0 * t), 0.0445 * std::cos(53.0 * t)});
-        weights.push_back(sm::modal_weights(*b, rest.back()));
-    }
-    std::vector<double> q(b->mode_count);
-    for (int k = 0; k < b->mode_count; ++k)
-        q[k] = 1e-3 / (k + 1);
+    std::vector<sm::Vec3> out(k_deform_points), nodal;
     for (auto _ : st) {
-        sm::modal_nodal_displacements(*b, q, nodal);
-        for (int i = 0; i < k_vertices; ++i)
-            out[i] = rest[i] + sm::interpolate_nodal(weights[i], nodal);
+        sm::modal_nodal_displacements(c.basis, c.q, nodal);
+        for (int i = 0; i < k_deform_points; ++i)
+            out[i] = c.rest[i] + sm::interpolate_nodal(c.weights[i], nodal);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
     }
-    const double bytes = k_vertices * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
+    const double bytes = k_deform_points * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
     st.counters["GB"] = benchmark::Counter(bytes * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
     st.counters["nodes"] = static_cast<double>(nodal.size());
-    st.SetItemsProcessed(st.iterations() * k_vertices);
+    st.SetItemsProcessed(st.iterations() * k_deform_points);
 }
 BENCHMARK(BM_Modal_DeformMesh)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMicrosecond);
 
@@ -195,10 +199,9 @@ BENCHMARK(BM_Modal_DeformMesh)->Arg(6)->Arg(12)->Arg(30)->Unit(benchmark::kMicro
 // (the sum of a few of the bytes read, so nothing is optimised away), no modal work.
 static void BM_Modal_MeshStreamFloor(benchmark::State& st)
 {
-    constexpr int k_vertices = 10'000;
-    std::vector<sm::LatticeWeights> weights(k_vertices);
-    std::vector<sm::Vec3> rest(k_vertices), out(k_vertices);
-    for (int i = 0; i < k_vertices; ++i) {
+    std::vector<sm::LatticeWeights> weights(k_deform_points);
+    std::vector<sm::Vec3> rest(k_deform_points), out(k_deform_points);
+    for (int i = 0; i < k_deform_points; ++i) {
         weights[i].count = 20;
         for (int a = 0; a < 20; ++a) {
             weights[i].nodes[a] = a;
@@ -207,7 +210,7 @@ static void BM_Modal_MeshStreamFloor(benchmark::State& st)
         rest[i] = {1.0 * i, 2.0, 3.0};
     }
     for (auto _ : st) {
-        for (int i = 0; i < k_vertices; ++i) {
+        for (int i = 0; i < k_deform_points; ++i) {
             const sm::LatticeWeights& w = weights[i];
             double s = 0.0;
             for (int a = 0; a < 20; ++a)
@@ -217,7 +220,7 @@ static void BM_Modal_MeshStreamFloor(benchmark::State& st)
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
     }
-    const double bytes = k_vertices * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
+    const double bytes = k_deform_points * (sizeof(sm::LatticeWeights) + 2 * sizeof(sm::Vec3));
     st.counters["GB"] = benchmark::Counter(bytes * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Modal_MeshStreamFloor)->Unit(benchmark::kMicrosecond);

@@ -195,39 +195,44 @@ LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape)
     return w;
 }
 
-Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights, std::span<const double> q)
+namespace
+{
+// Σ_k φ_k(node) q_k over the first `used` modes: the displacement of one lattice node.
+Vec3 node_displacement(const ModalBasis& basis, size_t node, std::span<const double> q, int used)
 {
     const int r = basis.mode_count;
-    const int used = std::min(r, static_cast<int>(q.size()));
+    const double* phi = &basis.mode_shapes[node * 3 * static_cast<size_t>(r)];
     Vec3 u{};
-    for (int a = 0; a < weights.count; ++a) {
-        const double* phi = &basis.mode_shapes[static_cast<size_t>(weights.nodes[a]) * 3 * r];
-        for (int d = 0; d < 3; ++d) {
-            double s = 0.0;
-            for (int k = 0; k < used; ++k)
-                s += phi[d * r + k] * q[k];
-            u[d] += weights.weights[a] * s;
-        }
+    for (int d = 0; d < 3; ++d) {
+        double s = 0.0;
+        for (int k = 0; k < used; ++k)
+            s += phi[d * r + k] * q[k];
+        u[d] = s;
     }
+    return u;
+}
+
+int used_modes(const ModalBasis& basis, std::span<const double> q)
+{
+    return std::min(basis.mode_count, static_cast<int>(q.size()));
+}
+} // namespace
+
+Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights, std::span<const double> q)
+{
+    const int used = used_modes(basis, q);
+    Vec3 u{};
+    for (int a = 0; a < weights.count; ++a)
+        u += weights.weights[a] * node_displacement(basis, static_cast<size_t>(weights.nodes[a]), q, used);
     return u;
 }
 
 void modal_nodal_displacements(const ModalBasis& basis, std::span<const double> q, std::vector<Vec3>& out)
 {
-    const int r = basis.mode_count;
-    const int used = std::min(r, static_cast<int>(q.size()));
+    const int used = used_modes(basis, q);
     out.resize(basis.node_positions.size());
-    for (size_t node = 0; node < out.size(); ++node) {
-        const double* phi = &basis.mode_shapes[node * 3 * static_cast<size_t>(r)];
-        Vec3 u{};
-        for (int d = 0; d < 3; ++d) {
-            double s = 0.0;
-            for (int k = 0; k < used; ++k)
-                s += phi[d * r + k] * q[k];
-            u[d] = s;
-        }
-        out[node] = u;
-    }
+    for (size_t node = 0; node < out.size(); ++node)
+        out[node] = node_displacement(basis, node, q, used);
 }
 
 Vec3 interpolate_nodal(const LatticeWeights& weights, std::span<const Vec3> nodal)
