@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the build needs, and only the missing ones (checked with dpkg -s).
 # `apt-get update` runs only when something is missing. Works as root, or through sudo.
+# Extra package names as arguments are checked the same way (the sanitizer and fuzz builds add clang).
 set -euo pipefail
 
 packages=(
@@ -17,6 +18,7 @@ packages=(
   libglfw3-dev         # editor/: the window of the interactive editor
   libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image_write (PNG)
   libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri  # at run time: Mesa's EGL (surfaceless) and llvmpipe
+  "$@"
 )
 
 missing=()

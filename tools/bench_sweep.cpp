@@ -150,10 +150,12 @@ std::vector<BenchConfig> make_sweep(const Scene& scene, const BenchBase& base,
             out.push_back(std::move(c));
         }
     if (wanted("integrator") && modal)
-        for (auto [integ, name] : {std::pair{ModalIntegrator::Exact, "exact"},
-                                   std::pair{ModalIntegrator::CentralDifference, "central_difference"}}) {
+        for (const auto& [integrator, name] :
+             {std::pair{ModalIntegrator::Exact, "exact"},
+              std::pair{ModalIntegrator::CentralDifference, "central_difference"}}) {
             BenchConfig c = config(scene, "integrator", name);
-            for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.integrator = integ; });
+            const ModalIntegrator chosen = integrator; // clang 14 cannot capture a structured binding
+            for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.integrator = chosen; });
             out.push_back(std::move(c));
         }
     if (wanted("frequency"))

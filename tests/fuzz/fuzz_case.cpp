@@ -2,9 +2,11 @@
 #include "fuzz/fuzz_case.h"
 
 #include "supermodal/body.h"
+#include "supermodal/modal.h"
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
 
+#include <algorithm>
 #include <string>
 
 namespace supermodal::fuzz
@@ -13,12 +15,19 @@ namespace
 {
 // Enough steps to exercise every stage; few enough that a 60 s run sees ~10^5 inputs.
 constexpr int k_steps = 8;
+// Body-substeps per input: a big pile still takes at least one step (every stage runs), but the
+// corpus's 100-body piles no longer take 8, which had cut the long run's rate to ~90 inputs/s.
+constexpr long k_body_substep_budget = 8 * 32;
 // Larger worlds would only measure how fast we step, not find loader bugs.
 constexpr size_t k_max_bodies = 256;
 // A modal basis on a 128³ lattice is a legitimate, minutes-long build: valid input, not a loader bug,
 // but it would trip the 10 s per-input timeout. Larger models are parsed and checked, not built.
 constexpr long k_max_modal_cells = 64;
 constexpr int k_max_modes = 24;
+// Every mode of the lattice ("type": "full") is a dense O(n³) solve: 64 cells of 20-node elements
+// took seconds each under the sanitizers and slowed the long run to ~6 inputs/s while the corpus
+// loaded. 8 cells keep it to milliseconds.
+constexpr long k_max_full_cells = 8;
 
 bool cheap_to_build(const Scene& scene)
 {
@@ -29,7 +38,8 @@ bool cheap_to_build(const Scene& scene)
         long cells = 1; // an automatic axis (0) gets up to 8 cells
         for (int n : m.lattice)
             cells *= n == 0 ? 8 : n;
-        if (cells > k_max_modal_cells || m.mode_count > k_max_modes)
+        if (cells > k_max_modal_cells || m.mode_count > k_max_modes ||
+            (m.mode_count == k_all_modes && cells > k_max_full_cells))
             return false;
     }
     return true;
@@ -52,7 +62,9 @@ Verdict run_scene_case(std::string_view text)
     Result<World> world = build_world(*scene);
     if (!world)
         return Verdict::Unbuilt;
-    for (int i = 0; i < k_steps; ++i)
+    const long per_step = std::max<long>(1, long(scene->bodies.size()) * scene->world.substep_count);
+    const int steps = int(std::clamp<long>(k_body_substep_budget / per_step, 1, k_steps));
+    for (int i = 0; i < steps; ++i)
         world->step();
     (void)world->state_hash();
     return Verdict::Stepped;

@@ -28,11 +28,15 @@ struct Pinned {
 // points instead of the value at their centroid (penalty.cpp), so the board's spring moves slightly.
 // Ball on board (exact modal integrator under contact): the board's modes with ωh < 2 take the
 // contact load as a kick before the exact flow instead of held (modal_world.cpp), so they ring differently.
+// All four, 2026-11-26 (session 7): the contact anchors hash the held spring per point area and the
+// dissipated-energy credit; rigid pairs hold their spring while touching (penalty.cpp hold_stiffness),
+// which changes demo, chair and pile; ball on board by the two new fields only (its contacts all
+// involve the modal board, whose pairs do not hold their spring).
 constexpr Pinned k_pinned[] = {
-    {"demo", 400, 0xadf60810e368bf63ULL},
-    {"chair_with_dummy", 500, 0x9b6ffddd7c4bafb9ULL},
-    {"ball_on_board", 400, 0x99d9ae86325a65b3ULL},
-    {"pile", 240, 0xf66c63dc00dd3679ULL},
+    {"demo", 400, 0x129bba792aec57f5ULL},
+    {"chair_with_dummy", 500, 0x454b8264e793c981ULL},
+    {"ball_on_board", 400, 0xa959e468cdbd6b50ULL},
+    {"pile", 240, 0xebacc3b795cab90bULL},
 };
 
 class PinnedHash : public testing::TestWithParam<Pinned>

@@ -79,13 +79,15 @@ struct Snapshot {
     double time = 0.0;
     uint64_t step_count = 0;
     double accumulator = 0.0;
-    std::vector<Entity> entities;          ///< Bodies in index order.
-    std::vector<double> values;            ///< Packed per-body state, k_values_per_body each.
-    std::vector<uint64_t> anchor_keys;     ///< Friction anchors: pair keys, sorted.
-    std::vector<Vec3> anchor_springs;      ///< Friction anchors: tangential spring extensions [m].
-    std::vector<double> anchor_twists;     ///< Friction anchors: torsional spring angles [rad].
-    std::vector<Vec3> anchor_rolls;        ///< Friction anchors: rolling spring angles [rad].
-    std::vector<Entity> constraints;       ///< Constraint handles (as entities) in index order.
+    std::vector<Entity> entities;         ///< Bodies in index order.
+    std::vector<double> values;           ///< Packed per-body state, k_values_per_body each.
+    std::vector<uint64_t> anchor_keys;    ///< Friction anchors: pair keys, sorted.
+    std::vector<Vec3> anchor_springs;     ///< Friction anchors: tangential spring extensions [m].
+    std::vector<double> anchor_twists;    ///< Friction anchors: torsional spring angles [rad].
+    std::vector<Vec3> anchor_rolls;       ///< Friction anchors: rolling spring angles [rad].
+    std::vector<double> anchor_stiffness; ///< Contact anchors: normal stiffness per point area held [N/m³].
+    std::vector<double> anchor_credits;   ///< Contact anchors: dissipated energy not spent on stiffening [J].
+    std::vector<Entity> constraints;      ///< Constraint handles (as entities) in index order.
     std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
     uint64_t broken_constraint_count = 0;
 

@@ -167,7 +167,7 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
     }
     for (const Candidate& c : fresh)
         if (c.depth > 0.0)
-            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching});
+            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching, 1.0});
     return touching;
 }
 

@@ -15,8 +15,10 @@ constexpr double k_gradient_step_rel = 1e-6;
 
 void normalize_weights(std::vector<ContactPoint>& points, size_t first, double weight_sum)
 {
-    for (size_t i = first; i < points.size(); ++i)
+    for (size_t i = first; i < points.size(); ++i) {
+        points[i].area = points[i].weight;
         points[i].weight = weight_sum > 0.0 ? points[i].weight / weight_sum : 0.0;
+    }
 }
 
 // Box of the OBB {centre ± half} seen from a frame rotated by q about `origin` (world → local).

@@ -29,6 +29,7 @@ struct ContactPoint {
     Vec3 normal{};       ///< Unit, from B towards A, world.
     double depth = 0.0;  ///< Penetration [m], > 0.
     double weight = 0.0; ///< Share of the pair's penalty force [-]; a pair's weights sum to 1.
+    double area = 0.0;   ///< The point's own surface area before the shares [m²] (a manifold point: 1).
 };
 
 /// Appends the points of A against B by surface sampling (both directions, weights summing to 1).

@@ -156,6 +156,34 @@ NormalSpring normal_spring(const PenaltyParams& params, const BodyModel& ma, con
     return s;
 }
 
+struct HeldSpring {
+    double per_area = 0.0; // stiffness per unit of point area used this substep [N/m per m²]
+    double credit = 0.0;   // energy the contact has dissipated and not yet spent on a rise [J]
+};
+
+// Frequency mode gives a pair the spring k = m_eff·ω² on the points' area-weighted mean depth. Both
+// the pose (m_eff) and the set of touching points (the weights are shares of the touching area) change
+// while the pair is compressed, so that force is not conservative: as a tip lands, each point that
+// joins at zero depth lowers the mean, and as it lifts off, each shallow point that leaves raises it;
+// pointed bodies landing on a tip gained 32–226% of the drop energy (docs/stability.md). So a touching
+// pair holds its spring per unit of point area, k/A: each point is then a spring of its own, and the
+// sum is conservative. The held value may fall at once (that removes stored energy, and keeps k ≤
+// m_eff·ω², so the step stays stable as m_eff drops or the area grows); a rise of Δ stores
+// ½·Δ·Σaδ² and is allowed only as far as the energy the contact has already dissipated pays for it.
+HeldSpring hold_stiffness(double k_target, double area, const PairAnchor* old,
+                          std::span<const ContactPoint> points)
+{
+    const double target = k_target / area;
+    if (old == nullptr || !(old->stiffness > 0.0) || target <= old->stiffness)
+        return {target, old != nullptr ? old->credit : 0.0};
+    double stored = 0.0; // Σ a·δ² [m⁴]
+    for (const ContactPoint& cp : points)
+        stored += cp.area * cp.depth * cp.depth;
+    const double rise = stored > 0.0 ? std::min(target - old->stiffness, 2.0 * old->credit / stored)
+                                     : target - old->stiffness;
+    return {old->stiffness + rise, std::max(0.0, old->credit - 0.5 * rise * stored)};
+}
+
 } // namespace
 
 double ZetaCache::get(double e)
@@ -216,25 +244,38 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     const double zeta = params.damping_ratio >= 0.0 ? params.damping_ratio
                                                     : io_zeta.get(std::max(ma.restitution, mb.restitution));
     const NormalSpring spring = normal_spring(params, ma, mb, m_eff, points, weight_sum);
-    const double omega = spring.omega;
     out.stiffness_clamped = spring.clamped;
+    // Frequency mode holds a rigid pair's spring per unit of point area (hold_stiffness). Not held:
+    // Hertz springs (their secant stiffness rises with depth by design), and pairs with a modal body,
+    // whose m_eff includes the modes: adaptive bodies change their mode count mid-contact, and holding
+    // the spring there moved ball_on_board's strike (0.24 → 0.39 mm off the 16-mode reference at a
+    // 0.3 mm budget); the stability map's modal slices never gained energy without it.
+    double area = 0.0;
+    for (const ContactPoint& cp : points)
+        area += cp.area;
+    const bool hold = !params.material && area > 0.0 && modal_n == 0.0;
+    const HeldSpring held = hold ? hold_stiffness(spring.k, area, old_anchor, points) : HeldSpring{};
+    const double k_pair = hold ? held.per_area * area : spring.k;
+    // The dashpot works on the spring actually used, so a held (softer) spring keeps its restitution.
+    const double omega = k_pair == spring.k ? spring.omega : std::sqrt(k_pair / m_eff);
     // The dashpot is explicit: a body feels the sum of its contacts' c·h/m_eff, and in a stack every
     // middle box has two, whose Nyquist mode (neighbours moving against each other) flips the velocity
     // every step once the sum passes 1 (measured: ten boxes, e = 0.2, c·h/m_eff = 0.92 per contact, in
     // a period-2 limit cycle at 0.19 m/s). Capped at k_max_dashpot_step for rigid pairs. Not for pairs
     // with a modal body: the modes absorb the dashpot's kick, and the cap starves them of damping
     // (measured: a soft sphere kept bouncing at 0.2–0.3 m/s for 12 s with it, rests within 3 s without).
-    const double k = spring.k;
     const double c_free = 2.0 * zeta * m_eff * omega;
     const double c = modal_n > 0.0 ? c_free : std::min(c_free, k_max_dashpot_step * m_eff / params.h);
 
     Vec3 total{}, torque_a{}, torque_b{};
-    double normal_force = 0.0, deepest = 0.0;
+    double normal_force = 0.0, deepest = 0.0, dissipated = 0.0;
     for (const ContactPoint& cp : points) {
         const double vn =
             dot(velocity_at(va, pa.position, cp.point) - velocity_at(vb, pb.position, cp.point), cp.normal);
         // No pull: a separating contact whose dashpot would exceed its spring just lets go.
-        const double f = std::max(0.0, k * cp.depth - c * vn) * cp.weight;
+        const double spring_force = (hold ? held.per_area * cp.area : spring.k * cp.weight) * cp.depth;
+        const double f = std::max(0.0, spring_force - c * vn * cp.weight);
+        dissipated += (spring_force - f) * vn * params.h; // ≥ 0: the dashpot, or a let-go spring
         const Vec3 fv = f * cp.normal;
         total += fv;
         torque_a += cross(cp.point - pa.position, fv);
@@ -250,6 +291,8 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     // Friction: a tangential spring anchored where the contact stuck, clamped to the Coulomb cone.
     const double mu = std::sqrt(ma.friction * mb.friction);
     PairAnchor anchor{pair.key(), {}};
+    anchor.stiffness = held.per_area;
+    anchor.credit = hold ? held.credit + dissipated : 0.0;
     if (old_anchor != nullptr) {
         anchor.spring = old_anchor->spring - dot(old_anchor->spring, n) * n; // keep it in today's plane
         anchor.twist = old_anchor->twist;

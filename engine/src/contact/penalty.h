@@ -19,10 +19,12 @@ namespace supermodal
 
 /// Friction state of a touching pair: the tangential spring's extension (Cundall–Strack anchor).
 struct PairAnchor {
-    uint64_t key = 0;   ///< BodyPair::key().
-    Vec3 spring{};      ///< Tangential spring extension [m], world, in the contact plane.
-    double twist = 0.0; ///< Torsional spring angle about the contact normal [rad].
-    Vec3 roll{};        ///< Rolling spring angle [rad], world, in the contact plane (rotation vector).
+    uint64_t key = 0;       ///< BodyPair::key().
+    Vec3 spring{};          ///< Tangential spring extension [m], world, in the contact plane.
+    double twist = 0.0;     ///< Torsional spring angle about the contact normal [rad].
+    Vec3 roll{};            ///< Rolling spring angle [rad], world, in the contact plane (rotation vector).
+    double stiffness = 0.0; ///< Normal spring per point area held while touching [N/m³] (0: Hertz).
+    double credit = 0.0;    ///< Energy dissipated by the contact, not yet spent on stiffening it [J].
 };
 
 /// Memo of damping ratios per restitution (a 50-step bisection): a pure function, so hits and misses

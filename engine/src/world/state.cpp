@@ -144,6 +144,8 @@ uint64_t World::state_hash() const
         fnv.f64(a.roll.x);
         fnv.f64(a.roll.y);
         fnv.f64(a.roll.z);
+        fnv.f64(a.stiffness);
+        fnv.f64(a.credit);
     }
     for (const PairManifold& m : w.contact.manifolds) {
         fnv.u64(m.key);
@@ -192,6 +194,8 @@ Snapshot World::snapshot() const
         s.anchor_springs.push_back(a.spring);
         s.anchor_twists.push_back(a.twist);
         s.anchor_rolls.push_back(a.roll);
+        s.anchor_stiffness.push_back(a.stiffness);
+        s.anchor_credits.push_back(a.credit);
     }
     for (const PairManifold& m : w.contact.manifolds) {
         s.manifold_keys.push_back(m.key);
@@ -214,7 +218,8 @@ Status World::restore(const Snapshot& s)
     Impl& w = *m_impl;
     if (s.values.size() != s.entities.size() * k_values_per_body ||
         s.anchor_keys.size() != s.anchor_springs.size() || s.anchor_keys.size() != s.anchor_twists.size() ||
-        s.anchor_keys.size() != s.anchor_rolls.size())
+        s.anchor_keys.size() != s.anchor_rolls.size() || s.anchor_keys.size() != s.anchor_stiffness.size() ||
+        s.anchor_keys.size() != s.anchor_credits.size())
         return Error{"", "snapshot", "corrupt snapshot: value count does not match its bodies"};
     size_t manifold_points = 0;
     for (int count : s.manifold_counts) {
@@ -277,8 +282,8 @@ Status World::restore(const Snapshot& s)
     }
     w.contact.anchors.clear();
     for (size_t i = 0; i < s.anchor_keys.size(); ++i)
-        w.contact.anchors.push_back(
-            {s.anchor_keys[i], s.anchor_springs[i], s.anchor_twists[i], s.anchor_rolls[i]});
+        w.contact.anchors.push_back({s.anchor_keys[i], s.anchor_springs[i], s.anchor_twists[i],
+                                     s.anchor_rolls[i], s.anchor_stiffness[i], s.anchor_credits[i]});
     w.contact.manifolds.clear();
     for (size_t i = 0, next = 0; i < s.manifold_keys.size(); ++i) {
         PairManifold m{.key = s.manifold_keys[i], .count = s.manifold_counts[i]};
