@@ -26,7 +26,7 @@ elif [ "$target" = cli_fuzz ]; then
   # stdout closed: the commands print their summaries there.
   corpus=$build/cli_corpus log=$build/cli_fuzz.log extra=(-dict=tests/fuzz/cli.dict -close_fd_mask=1)
   mkdir -p "$corpus"
-  cp -n tests/fuzz/cli_corpus/* "$corpus/" 2>/dev/null || true
+  cp -n tests/fuzz/cli_corpus/* tests/fuzz/cli_regressions/* "$corpus/" 2>/dev/null || true
 else
   corpus=$build/mesh_corpus log=$build/mesh_fuzz.log extra=()
   mkdir -p "$corpus"

@@ -52,6 +52,11 @@ std::string write_file_atomically(const std::string& path, const std::string& te
     return {};
 }
 
+std::string json_text(const nlohmann::json& j)
+{
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 nlohmann::json to_json(const Vec3& v)
 {
     return nlohmann::json::array({v.x, v.y, v.z});

@@ -25,6 +25,9 @@ void print_error(const std::string& message);
 /// Checks up front that path's directory exists and is writable (so bad paths fail before any work).
 [[nodiscard]] std::string check_writable(const std::string& path);
 
+/// JSON text, 2-space indent. Invalid UTF-8 (a file name from argv is any bytes) becomes U+FFFD
+/// instead of nlohmann's exception, which had made `export` fail as an internal error (cli fuzz).
+[[nodiscard]] std::string json_text(const nlohmann::json& j);
 [[nodiscard]] nlohmann::json to_json(const Vec3& v);
 [[nodiscard]] nlohmann::json to_json(const Quat& q);
 [[nodiscard]] const char* motion_name(MotionType motion);

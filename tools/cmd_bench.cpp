@@ -217,7 +217,7 @@ int bench_command(const BenchOptions& o)
             std::fprintf(stderr, "bench: no plot: %s\n", e.c_str());
     }
     if (o.json)
-        std::printf("%s\n", bench_json(summary).dump(2).c_str());
+        std::printf("%s\n", json_text(bench_json(summary)).c_str());
     else if (o.out.empty())
         std::printf("%s", bench_csv(summary).c_str());
     return k_exit_ok;

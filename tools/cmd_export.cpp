@@ -118,7 +118,7 @@ int export_command(const ExportOptions& o)
                                        {"glb_bytes", glb_bytes},
                                        {"record_seconds", record_seconds},
                                        {"write_seconds", write_seconds}};
-        std::printf("%s\n", report.dump(2).c_str());
+        std::printf("%s\n", json_text(report).c_str());
         return k_exit_ok;
     }
     std::printf("%s: %zu bodies, %zu vertices, %zu morph targets, %zu frames over %.4g s; run %.3f s, "

@@ -162,12 +162,12 @@ int fit_command(const FitOptions& o)
                                    {"seconds", seconds},
                                    {"parts", parts}};
     if (!o.scene_out.empty())
-        if (const std::string e = write_file_atomically(o.scene_out, scene.dump(2) + "\n"); !e.empty()) {
+        if (const std::string e = write_file_atomically(o.scene_out, json_text(scene) + "\n"); !e.empty()) {
             print_error(e);
             return k_exit_internal;
         }
     if (o.json) {
-        std::printf("%s\n", nlohmann::json{{"scene", scene}, {"fit", report}}.dump(2).c_str());
+        std::printf("%s\n", json_text(nlohmann::json{{"scene", scene}, {"fit", report}}).c_str());
         return k_exit_ok;
     }
     std::printf("%s: %zu vertices, %zu triangles (%s, scale %g m/unit, up %s), fitted in %.3f s\n",

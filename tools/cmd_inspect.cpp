@@ -73,7 +73,7 @@ int inspect_command(const InspectOptions& opt)
                                 {"gravity", to_json(world.settings().gravity)},
                                 {"bodies", bodies}};
     if (opt.json) {
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out).c_str());
         return k_exit_ok;
     }
     std::printf("%s: %zu bodies, dt = %g s x %d substeps\n", opt.scene.c_str(), bodies.size(),

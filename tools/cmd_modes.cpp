@@ -62,7 +62,7 @@ int modes_command(const ModesOptions& opt)
                                 {"assembly_seconds", d.assembly_seconds},
                                 {"eigen_seconds", d.eigen_seconds}};
     if (opt.json) {
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out).c_str());
         return k_exit_ok;
     }
     std::printf("%s: body %s, lattice %dx%dx%d (%d dofs), built in %.3f s (%s solver)\n", opt.scene.c_str(),

@@ -262,7 +262,7 @@ int run_command(const RunOptions& opt)
     nlohmann::json out = summary;
     if (capture)
         out["capture"] = capture->summary();
-    const std::string text = out.dump(2) + "\n";
+    const std::string text = json_text(out) + "\n";
     if (!opt.csv_out.empty())
         if (std::string err = write_file_atomically(opt.csv_out, csv.str()); !err.empty()) {
             print_error(err);

@@ -115,3 +115,17 @@ TEST(ExportCli, BadInputExitsWithTwoAndWritesNothing)
 }
 
 } // namespace
+
+TEST(ExportCli, AFileNameThatIsNotUtf8IsWrittenAndReportedWithoutAnInternalError)
+{
+    // Found by the command-line fuzzer (tests/fuzz/cli_fuzz.cpp): "--out a.glb\xe3..." made the JSON
+    // report throw nlohmann's type_error 316 and `export` exit 1. A file name is any bytes.
+    const fs::path dir = fresh_dir();
+    const std::string name = "anim\xe3.glb";
+    const Outcome o =
+        run_cli("export " + k_scene + " --seconds 0.01 --out '" + (dir / name).string() + "' --json");
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json r = nlohmann::json::parse(o.output); // valid JSON: the byte became U+FFFD
+    EXPECT_TRUE(fs::exists(dir / name));
+    EXPECT_EQ(r["glb_bytes"].get<size_t>(), fs::file_size(dir / name));
+}

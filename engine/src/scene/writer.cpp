@@ -208,7 +208,8 @@ Json constraint_json(const SceneConstraint& c)
 /// the shortest digits that read back to the same double.
 void write_value(const Json& value, int indent, std::string& out)
 {
-    const std::string flat = value.dump();
+    // Names set through the API may be any bytes: invalid UTF-8 becomes U+FFFD rather than a throw.
+    const std::string flat = value.dump(-1, ' ', false, Json::error_handler_t::replace);
     if (!value.is_structured() || value.empty() ||
         flat.size() + static_cast<size_t>(indent) <= k_inline_width) {
         // dump() packs separators; one space after ':' and ',' reads better and still parses the same.
@@ -242,7 +243,7 @@ void write_value(const Json& value, int indent, std::string& out)
     for (auto it = value.begin(); it != value.end(); ++it, ++i) {
         out += pad;
         if (is_object)
-            out += Json(it.key()).dump() + ": ";
+            out += Json(it.key()).dump(-1, ' ', false, Json::error_handler_t::replace) + ": ";
         write_value(*it, indent + 2, out);
         out += i + 1 < value.size() ? ",\n" : "\n";
     }
