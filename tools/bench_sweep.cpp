@@ -46,6 +46,16 @@ bool finite(const Vec3& v)
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// Every elastic mode of each modal body's lattice ("type": "full"), fixed, all the time.
+void use_every_mode(Scene& s, const BenchBase& base)
+{
+    for (size_t i : base.modal_indices) {
+        s.bodies[i].dynamics = DynamicsType::Full;
+        s.bodies[i].def.modal.mode_count = k_all_modes;
+        s.bodies[i].def.modal.adaptive_tolerance = 0.0;
+    }
+}
+
 } // namespace
 
 std::string resolve_base(const Scene& scene, BenchBase& base)
@@ -78,13 +88,15 @@ std::string resolve_base(const Scene& scene, BenchBase& base)
     return {};
 }
 
-Scene reference_scene(const Scene& scene, const BenchBase& base, bool double_modes)
+Scene reference_scene(const Scene& scene, const BenchBase& base, ReferenceModes modes)
 {
     Scene s = scene;
     s.world.dt = scene.world.dt / 8.0;
     s.world.contact.sample_spacing = 0.5 * base.spacing;
+    if (modes == ReferenceModes::All)
+        use_every_mode(s, base);
     for_modal(s, base, [&](ModalBodyDef& m, size_t) {
-        if (double_modes)
+        if (modes == ReferenceModes::Doubled)
             m.mode_count = std::min(2 * m.mode_count, k_max_modes);
         m.integrator = ModalIntegrator::Exact;
     });
@@ -119,11 +131,7 @@ std::vector<BenchConfig> make_sweep(const Scene& scene, const BenchBase& base,
         }
     if (wanted("modes") && modal) { // every mode of the lattice: "full" (refused above 1536 dofs)
         BenchConfig c = config(scene, "modes", "full");
-        for (size_t i : base.modal_indices) {
-            c.scene.bodies[i].dynamics = DynamicsType::Full;
-            c.scene.bodies[i].def.modal.mode_count = k_all_modes;
-            c.scene.bodies[i].def.modal.adaptive_tolerance = 0.0;
-        }
+        use_every_mode(c.scene, base);
         out.push_back(std::move(c));
     }
     if (wanted("lattice") && modal)

@@ -35,9 +35,14 @@ struct BenchBase {
 /// Builds the scene once to resolve automatic lattices and the default spacing; an error message when
 /// the scene does not build.
 [[nodiscard]] std::string resolve_base(const Scene& scene, BenchBase& base);
-/// The converged reference: dt/8, sample spacing/2, modal bodies with doubled modes (when double_modes;
-/// capped at k_max_modes), exact integrator.
-[[nodiscard]] Scene reference_scene(const Scene& scene, const BenchBase& base, bool double_modes);
+/// How the reference treats modal bodies' modes.
+enum class ReferenceModes {
+    All,     ///< every elastic mode of the lattice ("type": "full"; refused past k_max_full_dofs)
+    Doubled, ///< twice the scene's count, capped at k_max_modes
+    Scene,   ///< the scene's own counts
+};
+/// The converged reference: dt/8, sample spacing/2, modal bodies with `modes`, exact integrator.
+[[nodiscard]] Scene reference_scene(const Scene& scene, const BenchBase& base, ReferenceModes modes);
 /// One-knob-at-a-time configurations for the given knobs (all when empty); knobs without a subject in
 /// this scene (modes, lattice, integrator with no modal body) give none.
 [[nodiscard]] std::vector<BenchConfig> make_sweep(const Scene& scene, const BenchBase& base,
