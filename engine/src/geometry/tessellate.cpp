@@ -296,6 +296,9 @@ MeridianPolyline meridian_polyline(const SphericalProduct& sp)
 LoopArc loop_arc_at(const SphericalProduct& sp, double u)
 {
     const double quarter = sp.horizontal.length(), loop = 4.0 * quarter;
+    // A curve too long for a double (a 1e308 m radius: scene fuzz) has no arc parameter: its start.
+    if (!(quarter > 0.0) || !std::isfinite(loop) || !std::isfinite(u))
+        return {0, 0.0, 1.0, 1.0};
     const double r = std::clamp(u - std::floor(u / loop) * loop, 0.0, loop);
     const int q = std::min(3, int(r / quarter));
     const double sign_x[4] = {1, -1, -1, 1}, sign_y[4] = {1, 1, -1, -1};

@@ -2,6 +2,7 @@
 #include "io/ply_header.h"
 
 #include <algorithm>
+#include <iterator>
 #include <sstream>
 #include <vector>
 
@@ -34,6 +35,15 @@ bool is_text(const std::string& line, bool any_utf8)
     });
 }
 
+// The scalar types of the PLY format, with the sized aliases assimp also reads.
+bool is_ply_type(const std::string& t)
+{
+    static const char* const types[] = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                        "float", "double", "int8",    "uint8",  "int16", "uint16",
+                                        "int32", "uint32", "float32", "float64"};
+    return std::any_of(std::begin(types), std::end(types), [&](const char* x) { return t == x; });
+}
+
 std::string at(int line, const std::string& what)
 {
     return "PLY header line " + std::to_string(line) + ": " + what;
@@ -55,6 +65,8 @@ std::optional<std::string> ply_header_problem(std::istream& in)
     std::streamsize read = 0;
     int number = 0;
     bool format = false;
+    std::vector<std::string> elements; // declared so far: assimp 5.2 frees memory it does not own
+                                       // when a name comes twice (mesh fuzz, a bad-free)
     while (std::getline(in, line)) {
         ++number;
         read += static_cast<std::streamsize>(line.size()) + 1;
@@ -76,6 +88,8 @@ std::optional<std::string> ply_header_problem(std::istream& in)
         if (w[0] == "end_header")
             return format ? std::nullopt : std::optional<std::string>(at(number, "no format line before it"));
         if (w[0] == "format") {
+            if (format)
+                return at(number, "a second format line");
             if (w.size() != 3 ||
                 (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
                 return at(number, "expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
@@ -83,9 +97,18 @@ std::optional<std::string> ply_header_problem(std::istream& in)
         } else if (w[0] == "element") {
             if (w.size() != 3 || !is_count(w[2]))
                 return at(number, "expected \"element NAME COUNT\" with a whole COUNT");
+            if (std::find(elements.begin(), elements.end(), w[1]) != elements.end())
+                return at(number, "element \"" + w[1] + "\" declared twice");
+            elements.push_back(w[1]);
         } else if (w[0] == "property") {
-            if (w.size() < 3)
-                return at(number, "expected \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
+            const bool scalar = w.size() == 3 && is_ply_type(w[1]);
+            const bool list = w.size() == 5 && w[1] == "list" && is_ply_type(w[2]) && is_ply_type(w[3]);
+            if (!scalar && !list)
+                return at(number,
+                          "expected \"property TYPE NAME\" or \"property list TYPE TYPE NAME\" "
+                          "(TYPE: char, uchar, short, ushort, int, uint, float, double or a sized alias)");
+            if (elements.empty())
+                return at(number, "a property before any element");
         } else {
             return at(number, "unknown keyword \"" + w[0] + "\"");
         }
