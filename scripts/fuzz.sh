@@ -2,8 +2,9 @@
 # Fuzzes with libFuzzer (clang from Debian) for SECONDS (default 60). TARGET (default scene_fuzz): the
 # scene loader, with the seed corpus (tests/fuzz/corpus, tests/fuzz/regressions, samples/) and the
 # format's dictionary; mesh_fuzz: mesh import (tests/fuzz/mesh_corpus, each seed behind the byte that
-# picks its extension); or cli_fuzz: the command line's arguments (tests/fuzz/cli_corpus, cli.dict). New crashes land in build-fuzz/crashes/; a fixed one goes to
-# tests/fuzz/regressions/ (replayed by ctest, FuzzReplay.*).
+# picks its extension); or cli_fuzz: the command line's arguments (tests/fuzz/cli_corpus, cli.dict).
+# New crashes land in build-fuzz/crashes/; a fixed one goes to tests/fuzz/regressions/ (replayed by
+# ctest, FuzzReplay.*), tests/fuzz/mesh_regressions/ or tests/fuzz/cli_regressions/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}

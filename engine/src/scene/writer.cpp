@@ -206,10 +206,16 @@ Json constraint_json(const SceneConstraint& c)
 /// Pretty text: a value whose one-line form fits k_inline_width (after the indent) stays on one line;
 /// larger objects and arrays open one member per line. Numbers print through nlohmann, which writes
 /// the shortest digits that read back to the same double.
+// One-line JSON text. Names set through the API may be any bytes: invalid UTF-8 becomes U+FFFD rather
+// than nlohmann's throw.
+std::string flat_text(const Json& value)
+{
+    return value.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 void write_value(const Json& value, int indent, std::string& out)
 {
-    // Names set through the API may be any bytes: invalid UTF-8 becomes U+FFFD rather than a throw.
-    const std::string flat = value.dump(-1, ' ', false, Json::error_handler_t::replace);
+    const std::string flat = flat_text(value);
     if (!value.is_structured() || value.empty() ||
         flat.size() + static_cast<size_t>(indent) <= k_inline_width) {
         // dump() packs separators; one space after ':' and ',' reads better and still parses the same.
@@ -243,7 +249,7 @@ void write_value(const Json& value, int indent, std::string& out)
     for (auto it = value.begin(); it != value.end(); ++it, ++i) {
         out += pad;
         if (is_object)
-            out += Json(it.key()).dump(-1, ' ', false, Json::error_handler_t::replace) + ": ";
+            out += flat_text(Json(it.key())) + ": ";
         write_value(*it, indent + 2, out);
         out += i + 1 < value.size() ? ",\n" : "\n";
     }
