@@ -176,6 +176,20 @@ TEST(MeshImport, MalformedPlyHeaderIsRefusedBeforeAssimpLoopsOnIt)
     // "ply" and then junk on the magic line: assimp reads it as PLY (and looped on one); refused.
     EXPECT_NE(refused(std::string("ply\0\0asc\nformat ascii 1.0\n", 26) + tail, "magic.ply").find("line 1"),
               std::string::npos);
+    // An element declared twice made assimp 5.2 free memory it does not own (mesh fuzz, ASan
+    // bad-free; tests/fuzz/mesh_regressions/element_declared_twice.ply): refused at its line, as are
+    // malformed property lines and properties before any element.
+    EXPECT_NE(refused("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nelement vertex 4\n" + tail,
+                      "twice.ply")
+                  .find("line 5: element \"vertex\" declared twice"),
+              std::string::npos);
+    EXPECT_NE(
+        refused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float y ascii 1.0\n" + tail, "prop.ply")
+            .find("line 4"),
+        std::string::npos);
+    EXPECT_NE(refused("ply\nformat ascii 1.0\nproperty float x\nelement vertex 3\n" + tail, "early.ply")
+                  .find("line 3: a property before any element"),
+              std::string::npos);
     // A comment may hold any UTF-8; the well-formed PLY of the other tests still loads.
     const sm::TriangleMesh src = source_mesh();
     const std::string good = write_ply(src);
