@@ -114,11 +114,11 @@ TEST(Mpr, OrdinaryQueriesStayFarInsideTheSupportBudget)
     EXPECT_LT(most, sm::k_mpr_max_support_calls / 5);
 }
 
-TEST(Mpr, AHugeBodyBesideASmallOneEndsWithinTheSupportBudget)
+TEST(Mpr, AHugeBodyBesideASmallOneIsRefusedAtOnce)
 {
-    // The fuzzer's hang: a 1e60 m long ellipsoid among 6 cm ones. libccd's portal refinement has no
-    // iteration cap and rounding at that scale never meets its tolerance; the support budget ends the
-    // query, reported as no overlap (the pair had to fail somehow: no double resolves 3 cm on 1e60 m).
+    // The fuzzer's hang (session 6): a 1e60 m long ellipsoid among 6 cm ones. libccd's portal refinement
+    // has no iteration cap and rounding at that scale never meets its tolerance. First ended by the
+    // support budget; now refused before libccd runs (no double resolves 3 cm on 1e60 m).
     const sm::Collider huge = collider({0.06, 0.04, 1e60}, 1.0), small = collider({0.06, 0.04, 0.03}, 1.0);
     const sm::Quat qh{-0.30494454806978222, 0.80000904718307064, 0.14441348303304696, -0.49612407011353088};
     const sm::Quat qs{0.10150388499320943, 0.80334385994625668, 0.4340158139709645, -0.39492515397357969};
@@ -126,5 +126,61 @@ TEST(Mpr, AHugeBodyBesideASmallOneEndsWithinTheSupportBudget)
                                                 view(huge, {-0.287476, 1.312823, 0.116257}, qh));
     EXPECT_TRUE(r.gave_up);
     EXPECT_FALSE(r.hit);
-    EXPECT_LE(r.support_calls, sm::k_mpr_max_support_calls + 1);
+    EXPECT_EQ(r.support_calls, 0);
+}
+
+TEST(Mpr, AHugeBodyFarFromTheOriginEndsAtOnce)
+{
+    // The fuzzer's second hang (the exploding pile): the 1e60 m ellipsoid flung to 1.2e41 m, against
+    // a 6 cm one near the origin. Rounding at that scale kept one of libccd's portal loops turning
+    // even on the budget's fallback supports (the shape's centre). A query whose coordinates double
+    // cannot resolve to the MPR tolerance is now refused before libccd runs: no support is evaluated.
+    const sm::Collider huge = collider({0.06, 0.04, 1e60}, 1.0), small = collider({0.06, 0.04, 0.03}, 1.0);
+    const sm::Quat qh{-0.70547658588452178, -0.34495933349150898, 0.43088120836163413, 0.44457533589553866};
+    const sm::Quat qs{0.11089045294428784, 0.16220212991850846, 0.67207443166234504, -0.7139395876413116};
+    const sm::MprResult r =
+        sm::mpr_penetration(view(huge, {1.2493412836166424e+41, 2.4986825672332787e+40, 1.8378931116193796e+25}, qh),
+                            view(small, {-0.084506999999999999, 1.3039942063137755, 0.100656}, qs));
+    EXPECT_TRUE(r.gave_up);
+    EXPECT_FALSE(r.hit);
+    EXPECT_EQ(r.support_calls, 0);
+}
+
+TEST(Mpr, TwoSmallBodiesFarOutOverlapWhileDoublesResolveThemAndAreRefusedPastIt)
+{
+    // The rounding rule's edge for position: two 3 cm spheres 1 cm deep, shifted out along x. Up to
+    // 1e8 m (spacing of doubles 1.5e-8 m) the depth is found; at 1e10 m (rounding bound 1.6e-5 m over
+    // the 3e-6 m tolerance) the query is refused.
+    const sm::Collider s = collider({0.03, 0.03, 0.03}, 1.0);
+    for (const double far : {0.0, 1e3, 1e6, 1e8}) {
+        const sm::MprResult r = sm::mpr_penetration(view(s, {far, 0, 0}), view(s, {far + 0.05, 0, 0}));
+        EXPECT_TRUE(r.hit) << far;
+        EXPECT_NEAR(r.depth, 0.01, 1e-5) << far; // MPR's tolerance 3e-6 m, plus rounding 1.5e-8 m
+    }
+    const sm::MprResult r = sm::mpr_penetration(view(s, {1e10, 0, 0}), view(s, {1e10 + 0.05, 0, 0}));
+    EXPECT_TRUE(r.gave_up);
+    EXPECT_FALSE(r.hit);
+    EXPECT_EQ(r.support_calls, 0);
+}
+
+TEST(Mpr, PastTheBudgetEveryLoopEnds)
+{
+    // The budget's fallback (a point far behind each shape's centre) must end each of libccd's loops
+    // wherever it stands: cut ordinary overlapping queries short at every budget from 1 to 40 supports
+    // (they need up to ~30), so the cut lands in portal discovery, refinement and the depth search.
+    // Each query ends within one Minkowski support past its budget, and a cut query reports no overlap.
+    const sm::Collider a = collider({0.1, 0.07, 0.05}, 0.6), b = collider({0.08, 0.12, 0.06}, 1.4);
+    const sm::Quat qa = sm::normalized(sm::Quat{0.8, 0.1, 0.5, -0.2});
+    const sm::Quat qb = sm::normalized(sm::Quat{0.3, -0.6, 0.2, 0.7});
+    int cut = 0;
+    for (int budget = 1; budget <= 40; ++budget)
+        for (const sm::Vec3 d : {sm::Vec3{0.05, 0.02, -0.01}, sm::Vec3{-0.02, 0.09, 0.03}, sm::Vec3{0.0, 0.0, 0.1}}) {
+            const sm::MprResult r = sm::mpr_penetration(view(a, d, qa), view(b, {}, qb), budget);
+            EXPECT_LE(r.support_calls, budget + 1) << budget;
+            if (r.gave_up) {
+                EXPECT_FALSE(r.hit) << budget;
+                ++cut;
+            }
+        }
+    EXPECT_GT(cut, 30); // the small budgets really cut
 }
