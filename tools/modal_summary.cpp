@@ -52,7 +52,11 @@ void add_modal_summaries(const World& world, nlohmann::json& io_bodies)
                                              {"truncation_estimate_m", act.truncation_estimate},
                                              {"max_truncation_estimate_m", act.max_truncation_estimate},
                                              {"active_count_changes", act.active_count_changes},
-                                             {"active_mode_substeps", act.active_mode_substeps}};
+                                             {"active_mode_substeps", act.active_mode_substeps},
+                                             {"contact_samples", act.contact_samples},
+                                             {"sample_spacing_m", act.sample_spacing},
+                                             {"sampling_gap_m", act.sampling_gap},
+                                             {"sampling_gap_met", act.sampling_gap_met}};
     }
 }
 

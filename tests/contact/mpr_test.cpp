@@ -138,9 +138,9 @@ TEST(Mpr, AHugeBodyFarFromTheOriginEndsAtOnce)
     const sm::Collider huge = collider({0.06, 0.04, 1e60}, 1.0), small = collider({0.06, 0.04, 0.03}, 1.0);
     const sm::Quat qh{-0.70547658588452178, -0.34495933349150898, 0.43088120836163413, 0.44457533589553866};
     const sm::Quat qs{0.11089045294428784, 0.16220212991850846, 0.67207443166234504, -0.7139395876413116};
-    const sm::MprResult r =
-        sm::mpr_penetration(view(huge, {1.2493412836166424e+41, 2.4986825672332787e+40, 1.8378931116193796e+25}, qh),
-                            view(small, {-0.084506999999999999, 1.3039942063137755, 0.100656}, qs));
+    const sm::MprResult r = sm::mpr_penetration(
+        view(huge, {1.2493412836166424e+41, 2.4986825672332787e+40, 1.8378931116193796e+25}, qh),
+        view(small, {-0.084506999999999999, 1.3039942063137755, 0.100656}, qs));
     EXPECT_TRUE(r.gave_up);
     EXPECT_FALSE(r.hit);
     EXPECT_EQ(r.support_calls, 0);
@@ -174,7 +174,8 @@ TEST(Mpr, PastTheBudgetEveryLoopEnds)
     const sm::Quat qb = sm::normalized(sm::Quat{0.3, -0.6, 0.2, 0.7});
     int cut = 0;
     for (int budget = 1; budget <= 40; ++budget)
-        for (const sm::Vec3 d : {sm::Vec3{0.05, 0.02, -0.01}, sm::Vec3{-0.02, 0.09, 0.03}, sm::Vec3{0.0, 0.0, 0.1}}) {
+        for (const sm::Vec3 d :
+             {sm::Vec3{0.05, 0.02, -0.01}, sm::Vec3{-0.02, 0.09, 0.03}, sm::Vec3{0.0, 0.0, 0.1}}) {
             const sm::MprResult r = sm::mpr_penetration(view(a, d, qa), view(b, {}, qb), budget);
             EXPECT_LE(r.support_calls, budget + 1) << budget;
             if (r.gave_up) {

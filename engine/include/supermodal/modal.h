@@ -215,6 +215,13 @@ struct BodyModalActivity {
     uint64_t active_count_changes = 0;    ///< Times the active count changed [-].
     double active_mode_substeps = 0.0;    ///< Σ over substeps of the active count [-] (adaptive bodies):
                                           ///< the modal work done, in mode-substeps.
+    /// Contact samples chosen for the budget (adaptive bodies whose world leaves the spacing automatic;
+    /// else 0 and the fields below are zero): count, requested spacing [m], and the measured sampling
+    /// gap [m] (how much deeper the body may sink between samples), with whether it met its share.
+    int contact_samples = 0;
+    double sample_spacing = 0.0;
+    double sampling_gap = 0.0;
+    bool sampling_gap_met = false;
 };
 /// Zeros for a rigid body.
 [[nodiscard]] BodyModalActivity body_modal_activity(const World& world, Entity body);

@@ -4,6 +4,7 @@
 // overlap (O(samples near the overlap), not O(all samples)).
 #pragma once
 
+#include "contact/sample_density.h"
 #include "supermodal/geometry.h"
 #include "supermodal/shape.h"
 
@@ -33,6 +34,10 @@ struct Collider {
     bool deformed = false;                    ///< Taper or bend: queries go through the inverse map.
     double thickness = 0.0;                   ///< Smallest extent (2 × smallest radius) [m], for tunnelling.
     Aabb local_box{};                         ///< Box of the shape in the body frame [m].
+    /// Sampling gap the spacing was chosen to keep under [m] (auto bodies, contact/sample_density.h);
+    /// 0: the spacing came from ContactDef::sample_spacing (or its default).
+    double sampling_tolerance = 0.0;
+    SampleDensityChoice sampling{}; ///< What that choice measured (sampling_tolerance > 0 only).
 };
 
 /// Spacing used when ContactDef::sample_spacing is 0: a quarter of the smallest radius [m].

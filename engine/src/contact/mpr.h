@@ -16,7 +16,8 @@ struct MprResult {
     Vec3 normal{};         ///< Unit, from B towards A, world.
     Vec3 point{};          ///< libccd's contact position [m], world (between the two surfaces).
     int support_calls = 0; ///< Minkowski support evaluations the query used [-].
-    bool gave_up = false;  ///< Unresolvable (too far out for doubles) or the support budget ran out; no overlap.
+    bool gave_up =
+        false; ///< Unresolvable (too far out for doubles) or the support budget ran out; no overlap.
 };
 
 /// Portal tolerance relative to the smaller body's smallest radius [-]: the depth is found to this

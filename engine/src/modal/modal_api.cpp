@@ -95,6 +95,13 @@ BodyModalActivity body_modal_activity(const World& world, Entity e)
     out.max_truncation_estimate = b->max_truncation;
     out.active_count_changes = b->active_changes;
     out.active_mode_substeps = b->active_mode_substeps;
+    if (b->collider && b->collider->sampling_tolerance > 0.0) {
+        const SampleDensityChoice& s = b->collider->sampling;
+        out.contact_samples = static_cast<int>(b->collider->samples->samples.size());
+        out.sample_spacing = s.spacing;
+        out.sampling_gap = s.gap;
+        out.sampling_gap_met = s.met;
+    }
     return out;
 }
 

@@ -76,13 +76,28 @@ void set_mass_model(BodyModel& model, const ShapeDef& shape, double density)
 }
 
 // Colliders are built once per distinct shape and shared: a pile of identical bodies holds one sample set.
-std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com)
+// An auto body (sampling_tolerance > 0) whose scene leaves the spacing automatic gets the coarsest
+// spacing whose measured sampling gap stays within the tolerance (measured once per shape: ~60-90 ms).
+std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com,
+                                             double sampling_tolerance)
 {
+    const int max_samples = w.def.contact.max_samples_per_body;
+    if (w.def.contact.sample_spacing > 0.0 || shape.type == ShapeType::Plane)
+        sampling_tolerance = 0.0;
     for (const auto& c : w.colliders)
-        if (same_shape(c->shape, shape) && c->com_shape == com)
+        if (same_shape(c->shape, shape) && c->com_shape == com && c->sampling_tolerance == sampling_tolerance)
             return c;
-    auto c = std::make_shared<const Collider>(
-        make_collider(shape, com, w.def.contact.sample_spacing, w.def.contact.max_samples_per_body));
+    std::shared_ptr<const Collider> c;
+    if (sampling_tolerance > 0.0) {
+        const SampleDensityChoice choice = choose_sample_spacing(shape, sampling_tolerance, max_samples);
+        Collider made = make_collider(shape, com, choice.spacing, max_samples);
+        made.sampling_tolerance = sampling_tolerance;
+        made.sampling = choice;
+        c = std::make_shared<const Collider>(std::move(made));
+    } else {
+        c = std::make_shared<const Collider>(
+            make_collider(shape, com, w.def.contact.sample_spacing, max_samples));
+    }
     w.colliders.push_back(c);
     return c;
 }
@@ -169,7 +184,10 @@ Entity create_body(World& world, const BodyDef& def)
     model.curvature = def.shape.type == ShapeType::Plane
                           ? 0.0
                           : 1.0 / std::min({def.shape.radii.x, def.shape.radii.y, def.shape.radii.z});
-    model.collider = collider_for(w, def.shape, model.mass.center_of_mass);
+    // An auto body's samples get a share of its displacement budget, as its left-out modes do.
+    const double sampling_tolerance =
+        def.modal.enabled ? k_sampling_share_of_budget * def.modal.adaptive_tolerance : 0.0;
+    model.collider = collider_for(w, def.shape, model.mass.center_of_mass, sampling_tolerance);
     const Quat q = normalized(def.orientation);
     w.reg.emplace(e, std::move(model));
     const BodyModel& placed = w.reg.get<BodyModel>(e);

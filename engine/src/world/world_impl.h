@@ -36,8 +36,13 @@ struct World::Impl {
 
 /// Mass, inverse mass and inertia of a body from its shape and density (zero inverses unless dynamic).
 void set_mass_model(BodyModel& model, const ShapeDef& shape, double density);
-/// The shared contact model for a shape whose centre of mass is `com` (shape frame) [m].
+/// Part of an auto body's displacement budget its contact samples may take (their sampling gap) [-]:
+/// a quarter, as much as the modes it leaves out keep to when quiet (modal/adaptive.h).
+inline constexpr double k_sampling_share_of_budget = 0.25;
+/// The shared contact model for a shape whose centre of mass is `com` (shape frame) [m]; a
+/// sampling_tolerance > 0 [m] chooses the sample spacing from it (contact/sample_density.h) unless the
+/// world sets ContactDef::sample_spacing.
 [[nodiscard]] std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape,
-                                                           const Vec3& com);
+                                                           const Vec3& com, double sampling_tolerance = 0.0);
 
 } // namespace supermodal

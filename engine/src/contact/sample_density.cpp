@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+#include "contact/sample_density.h"
+
+#include "contact/collider.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace supermodal
+{
+namespace
+{
+
+// Reference sampling: 1/8 of the finest candidate's spacing, so its own gap (quadratic in spacing) is
+// 1/64 of that candidate's; capped so a huge body does not take seconds.
+constexpr int k_reference_samples = 40000;
+constexpr int k_fibonacci_directions = 274; // + 26 box directions = 300
+
+std::vector<Vec3> directions()
+{
+    std::vector<Vec3> out;
+    out.reserve(k_fibonacci_directions + 26);
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < k_fibonacci_directions; ++i) {
+        const double y = 1.0 - 2.0 * (i + 0.5) / k_fibonacci_directions;
+        const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+        out.push_back({r * std::cos(golden * i), y, r * std::sin(golden * i)});
+    }
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z)
+                if (x != 0 || y != 0 || z != 0)
+                    out.push_back(normalized(Vec3{double(x), double(y), double(z)}));
+    return out;
+}
+
+double reach(std::span<const SurfaceSample> points, const Vec3& n)
+{
+    double most = -std::numeric_limits<double>::infinity();
+    for (const SurfaceSample& s : points)
+        most = std::max(most, dot(s.point, n));
+    return most;
+}
+
+} // namespace
+
+double sampling_gap(std::span<const SurfaceSample> samples, std::span<const SurfaceSample> reference)
+{
+    if (samples.empty() || reference.empty())
+        return std::numeric_limits<double>::infinity();
+    double gap = 0.0;
+    for (const Vec3& n : directions())
+        gap = std::max(gap, reach(reference, n) - reach(samples, n));
+    return gap;
+}
+
+SampleDensityChoice choose_sample_spacing(const ShapeDef& shape, double tolerance, int max_samples)
+{
+    const double base = default_sample_spacing(shape);
+    constexpr double k_factors[] = {4.0, 2.0, 1.0, 0.5, 0.25}; // coarse to fine: the cheapest first
+    const std::vector<SurfaceSample> reference =
+        sample_surface(shape, base * k_factors[std::size(k_factors) - 1] / 8.0, k_reference_samples);
+    SampleDensityChoice choice;
+    for (const double f : k_factors) {
+        const std::vector<SurfaceSample> samples = sample_surface(shape, base * f, max_samples);
+        choice = {base * f, static_cast<int>(samples.size()), sampling_gap(samples, reference), false};
+        choice.met = choice.gap <= tolerance;
+        if (choice.met)
+            break;
+    }
+    return choice;
+}
+
+} // namespace supermodal
