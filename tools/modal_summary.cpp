@@ -56,7 +56,11 @@ void add_modal_summaries(const World& world, nlohmann::json& io_bodies)
                                              {"contact_samples", act.contact_samples},
                                              {"sample_spacing_m", act.sample_spacing},
                                              {"sampling_gap_m", act.sampling_gap},
-                                             {"sampling_gap_met", act.sampling_gap_met}};
+                                             {"sampling_gap_met", act.sampling_gap_met},
+                                             {"lattice", act.lattice_cells},
+                                             {"lattice_frequency_change", act.lattice_frequency_change},
+                                             {"lattice_converged", act.lattice_converged},
+                                             {"lattice_error_estimate_m", act.lattice_error_estimate}};
     }
 }
 

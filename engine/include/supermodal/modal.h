@@ -222,6 +222,15 @@ struct BodyModalActivity {
     double sample_spacing = 0.0;
     double sampling_gap = 0.0;
     bool sampling_gap_met = false;
+    /// The lattice an adaptive body without a "lattice" was given (docs/modal.md "Lattice for the
+    /// budget"): its cells, the largest relative change of its kept modes' frequencies from the lattice
+    /// half as fine (−1: not chosen, or nothing coarser to compare), whether that is within 2%, and the
+    /// largest displacement error it may have caused so far: Σ over the shown modes of 2 × (2 × the
+    /// mode's change, its frequency error estimate) × the displacement it may reach [m].
+    std::array<int, 3> lattice_cells{};
+    double lattice_frequency_change = -1.0;
+    bool lattice_converged = false;
+    double lattice_error_estimate = 0.0;
 };
 /// Zeros for a rigid body.
 [[nodiscard]] BodyModalActivity body_modal_activity(const World& world, Entity body);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "modal/adaptive.h"
 
+#include "modal/auto_lattice.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -68,6 +70,9 @@ ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> for
     out.active = active;
     for (size_t k = active; k < r; ++k)
         out.truncation += reach[k];
+    if (b.lattice_changes.size() == r)
+        for (size_t k = 0; k < active; ++k)
+            out.lattice_error += 2.0 * k_lattice_change_safety * b.lattice_changes[k] * reach[k];
     return out;
 }
 

@@ -15,6 +15,10 @@ namespace supermodal::modal
 struct ActiveChoice {
     size_t active = 0;       ///< Lowest modes to show [-].
     double truncation = 0.0; ///< Surface displacement the other modes may reach [m] (an upper estimate).
+    /// Σ over the shown modes of 2 × (k_lattice_change_safety × lattice_changes[k]) × the displacement
+    /// mode k may reach [m]: what the lattice's frequency error may cost them (a mode's static response
+    /// goes as 1/ω², so twice the relative frequency error); 0 without changes.
+    double lattice_error = 0.0;
 };
 
 /// The active count for body b about to step under generalized forces `force` (r, [N/√kg]). Mode k may

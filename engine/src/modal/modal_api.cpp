@@ -9,6 +9,7 @@
 #include "supermodal/modal.h"
 #include "world/world_impl.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace supermodal
@@ -39,7 +40,10 @@ Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const Bo
         return Error{"", "modal", "the body is rigid (modal.enabled is false)"};
     if (Status s = validate(def); !s)
         return s.error();
-    return find_or_build_modal_basis(world.impl(), def);
+    Result<modal::LatticeChoice> choice = find_or_build_modal_basis(world.impl(), def);
+    if (!choice)
+        return choice.error();
+    return choice->basis;
 }
 
 const ModalBasis* body_modal_basis(const World& world, Entity e)
@@ -101,6 +105,13 @@ BodyModalActivity body_modal_activity(const World& world, Entity e)
         out.sample_spacing = s.spacing;
         out.sampling_gap = s.gap;
         out.sampling_gap_met = s.met;
+    }
+    out.lattice_cells = b->basis->cells;
+    if (!b->lattice_changes.empty()) {
+        out.lattice_frequency_change =
+            *std::max_element(b->lattice_changes.begin(), b->lattice_changes.end());
+        out.lattice_converged = out.lattice_frequency_change <= modal::k_auto_lattice_target;
+        out.lattice_error_estimate = b->max_lattice_error;
     }
     return out;
 }

@@ -126,13 +126,22 @@ ModalBasisDef modal_basis_def(const BodyDef& def)
     return out;
 }
 
-Result<std::shared_ptr<const ModalBasis>> find_or_build_modal_basis(World::Impl& w, const BodyDef& def)
+Result<modal::LatticeChoice> find_or_build_modal_basis(World::Impl& w, const BodyDef& def)
 {
-    return w.modal_bases.get_or_build(modal_basis_def(def));
+    const ModalBasisDef basis_def = modal_basis_def(def);
+    if (def.modal.adaptive_tolerance > 0.0 && basis_def.lattice.cells == std::array<int, 3>{})
+        return modal::choose_lattice(w.modal_bases, basis_def);
+    Result<std::shared_ptr<const ModalBasis>> built = w.modal_bases.get_or_build(basis_def);
+    if (!built)
+        return built.error();
+    modal::LatticeChoice choice;
+    choice.basis = *built;
+    return choice;
 }
 
-void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasis> basis, const BodyDef& def)
+void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& choice, const BodyDef& def)
 {
+    std::shared_ptr<const ModalBasis> basis = choice.basis;
     BodyModel& m = w.reg.get<BodyModel>(e);
     ModalBody b;
     const size_t r = static_cast<size_t>(basis->mode_count);
@@ -162,6 +171,7 @@ void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasi
     b.collider->samples = b.samples;
     b.collider->convex = false;
     b.adaptive_tolerance = def.modal.adaptive_tolerance;
+    b.lattice_changes = choice.frequency_changes;
     b.active = b.adaptive_tolerance > 0.0 ? 0 : r; // adaptive bodies start rigid
     b.most_active = b.active;
     // Adaptive bodies too: swapping to the rest collider (support-map contact) while rigid changed the
@@ -290,6 +300,7 @@ void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io
                 set_active_modes(b, choice.active);
             b.truncation = choice.truncation;
             b.max_truncation = std::max(b.max_truncation, choice.truncation);
+            b.max_lattice_error = std::max(b.max_lattice_error, choice.lattice_error);
             b.active_mode_substeps += static_cast<double>(b.active);
         }
         // Every mode steps, active or not: an inactive one is only hidden from the surface, so it joins

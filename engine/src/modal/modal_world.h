@@ -5,6 +5,7 @@
 #pragma once
 
 #include "contact/broadphase.h"
+#include "modal/auto_lattice.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 
@@ -18,11 +19,12 @@ struct StepContext;
 
 /// The basis definition a modal BodyDef asks for.
 [[nodiscard]] ModalBasisDef modal_basis_def(const BodyDef& def);
-/// The world's basis for a modal BodyDef, built on first use and cached.
-[[nodiscard]] Result<std::shared_ptr<const ModalBasis>> find_or_build_modal_basis(World::Impl& w,
-                                                                                  const BodyDef& def);
+/// The world's basis for a modal BodyDef, built on first use and cached. An auto body (adaptive
+/// tolerance > 0) with an automatic lattice gets the lattice modal::choose_lattice() settles on; for
+/// the others frequency_change stays −1.
+[[nodiscard]] Result<modal::LatticeChoice> find_or_build_modal_basis(World::Impl& w, const BodyDef& def);
 /// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest.
-void attach_modal_body(World::Impl& w, Entity e, std::shared_ptr<const ModalBasis> basis, const BodyDef& def);
+void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& choice, const BodyDef& def);
 
 /// Sets how many of an adaptive body's lowest modes its surface shows (the others keep stepping, hidden).
 void set_active_modes(ModalBody& b, size_t active);

@@ -160,13 +160,13 @@ Entity create_body(World& world, const BodyDef& def)
     SM_ASSERT(!w.locked, "bodies cannot be created while the world steps");
     if (!status || w.locked)
         return Entity{};
-    std::shared_ptr<const ModalBasis> basis;
+    modal::LatticeChoice lattice;
     if (def.modal.enabled) {
-        Result<std::shared_ptr<const ModalBasis>> built = find_or_build_modal_basis(w, def);
+        Result<modal::LatticeChoice> built = find_or_build_modal_basis(w, def);
         SM_ASSERT(built.has_value(), "modal basis build failed (modal_basis_for() gives the reason)");
         if (!built)
             return Entity{};
-        basis = std::move(*built);
+        lattice = std::move(*built);
     }
     const Entity e = w.reg.create();
     BodyModel model;
@@ -198,8 +198,8 @@ Entity create_body(World& world, const BodyDef& def)
     w.reg.emplace(e, Velocity{def.motion == MotionType::Static ? Vec3{} : def.linear_velocity,
                               def.motion == MotionType::Static ? Vec3{} : def.angular_velocity});
     w.reg.emplace(e, ForceAccumulator{});
-    if (basis)
-        attach_modal_body(w, e, std::move(basis), def);
+    if (lattice.basis)
+        attach_modal_body(w, e, lattice, def);
     return e;
 }
 

@@ -110,8 +110,12 @@ struct ModalBody {
     double adaptive_tolerance = 0.0; ///< Model: ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
     // Diagnostics of adaptive bodies (body_modal_activity); restore keeps them.
     size_t most_active = 0;
-    double truncation = 0.0;     ///< Displacement the inactive modes may miss, last substep [m].
-    double max_truncation = 0.0; ///< Its largest value [m].
+    double truncation = 0.0;        ///< Displacement the inactive modes may miss, last substep [m].
+    double max_truncation = 0.0;    ///< Its largest value [m].
+    double max_lattice_error = 0.0; ///< Largest lattice error estimate of the shown modes [m].
+    /// Model: each kept mode's relative frequency change from the lattice half as fine, when the lattice
+    /// was chosen for the budget (modal/auto_lattice.h) [-] (r); empty otherwise.
+    std::vector<double> lattice_changes;
     uint64_t active_changes = 0;
     double active_mode_substeps = 0.0; ///< Σ over substeps of the active count [-].
     // Derived and scratch.
