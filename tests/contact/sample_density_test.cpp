@@ -89,7 +89,7 @@ TEST(SampleDensity, AnAutoBallRestsWhereTheFinelySampledBallDoesWithinItsGap)
     // 4 mm budget gives the ball a quarter, 1 mm, and it takes the coarsest spacing; a 4 µm budget
     // samples it as finely as it can. Their resting heights differ by no more than the coarse gap, plus
     // 5% of it for how the touching samples share the penalty's own rest sink (measured on this pose:
-    // 0.3204 mm apart, gap 0.3223 mm: the pole falls in one of the widest holes).
+    // 0.3204 mm apart, gap 0.3218 mm: the pole falls in one of the widest holes).
     const Rest coarse = ball_at_rest("4e-3"), fine = ball_at_rest("4e-6");
     EXPECT_TRUE(coarse.activity.sampling_gap_met);
     EXPECT_LE(coarse.activity.sampling_gap, 1e-3);

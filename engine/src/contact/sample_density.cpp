@@ -14,8 +14,8 @@ namespace
 {
 
 // Reference sampling: 1/8 of the finest candidate's spacing, so its own gap (quadratic in spacing) is
-// 1/64 of that candidate's; capped so a huge body does not take seconds.
-constexpr int k_reference_samples = 40000;
+// 1/64 of that candidate's; capped so a large body does not take long (its reference is then coarser).
+constexpr int k_reference_samples = 20000;
 constexpr int k_fibonacci_directions = 274; // + 26 box directions = 300
 
 std::vector<Vec3> directions()
@@ -60,13 +60,22 @@ SampleDensityChoice choose_sample_spacing(const ShapeDef& shape, double toleranc
 {
     const double base = default_sample_spacing(shape);
     constexpr double k_factors[] = {4.0, 2.0, 1.0, 0.5, 0.25}; // coarse to fine: the cheapest first
-    const std::vector<SurfaceSample> reference =
-        sample_surface(shape, base * k_factors[std::size(k_factors) - 1] / 8.0, k_reference_samples);
+    const std::vector<Vec3> dirs = directions();
+    // The reference's reach along each direction once, not once per candidate (the bulk of the work).
+    std::vector<double> surface(dirs.size());
+    {
+        const std::vector<SurfaceSample> reference =
+            sample_surface(shape, base * k_factors[std::size(k_factors) - 1] / 8.0, k_reference_samples);
+        for (size_t i = 0; i < dirs.size(); ++i)
+            surface[i] = reach(reference, dirs[i]);
+    }
     SampleDensityChoice choice;
     for (const double f : k_factors) {
         const std::vector<SurfaceSample> samples = sample_surface(shape, base * f, max_samples);
-        choice = {base * f, static_cast<int>(samples.size()), sampling_gap(samples, reference), false};
-        choice.met = choice.gap <= tolerance;
+        double gap = samples.empty() ? std::numeric_limits<double>::infinity() : 0.0;
+        for (size_t i = 0; i < dirs.size() && !samples.empty(); ++i)
+            gap = std::max(gap, surface[i] - reach(samples, dirs[i]));
+        choice = {base * f, static_cast<int>(samples.size()), gap, gap <= tolerance};
         if (choice.met)
             break;
     }

@@ -77,7 +77,7 @@ void set_mass_model(BodyModel& model, const ShapeDef& shape, double density)
 
 // Colliders are built once per distinct shape and shared: a pile of identical bodies holds one sample set.
 // An auto body (sampling_tolerance > 0) whose scene leaves the spacing automatic gets the coarsest
-// spacing whose measured sampling gap stays within the tolerance (measured once per shape: ~60-90 ms).
+// spacing whose measured sampling gap stays within the tolerance (measured once per shape: 16-33 ms in Release).
 std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com,
                                              double sampling_tolerance)
 {
