@@ -129,9 +129,10 @@ TEST(AdaptiveModes, BallOnBoardMakesTheBoardModalWithinTheBudgetAndLeavesTheBall
     EXPECT_LE(error, k_budget) << "adaptive board off the 16-mode reference by " << error << " m";
     EXPECT_LE(adaptive.board.max_truncation_estimate, k_budget);
 
-    // A tighter budget shows more modes and meets it too (measured 0.24 mm with 3 modes; 0.21 mm with 1
-    // at 1 mm). Below ~0.3 mm this scene stops converging (0.49 mm at 0.1 mm): the hidden modes do not
-    // push back on the ball, so the contact, and with it the strike, drifts from the reference's.
+    // A tighter budget shows more modes and meets it too (measured 0.28 mm with 3 modes; 0.24 mm with 1
+    // at 1 mm). Below ~0.3 mm this scene stops converging (0.107 mm at 0.1 mm, 0.44 mm at 0.01 mm): the
+    // hidden modes do not push back on the ball, so the contact, and with it the strike, drifts from the
+    // reference's.
     const Trace tighter = run(ball_on_board(k_auto_board, k_auto_ball, "3e-4"), k_steps);
     EXPECT_GT(tighter.board.most_active_modes, adaptive.board.most_active_modes);
     EXPECT_LE(shape_error(tighter, reference), 3e-4);
