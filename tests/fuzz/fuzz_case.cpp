@@ -7,6 +7,7 @@
 #include "supermodal/world.h"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 namespace supermodal::fuzz
@@ -28,6 +29,7 @@ constexpr int k_max_modes = 24;
 // took seconds each under the sanitizers and slowed the long run to ~6 inputs/s while the corpus
 // loaded. 8 cells keep it to milliseconds.
 constexpr long k_max_full_cells = 8;
+constexpr int k_max_cached_bases = 32;
 
 bool cheap_to_build(const Scene& scene)
 {
@@ -63,6 +65,14 @@ Verdict run_scene_case(std::string_view text)
                                                                            : Verdict::Rejected;
     if (scene->bodies.size() > k_max_bodies || !cheap_to_build(*scene))
         return Verdict::Skipped;
+    // One basis cache for the whole run: most mutations of a modal scene leave its bodies' defs alone,
+    // and rebuilding their bases was 83% of a ball_on_board mutation's time (2 s each under the fuzz
+    // build; past the 10 s timeout on a loaded machine). Bases are keyed by their whole def, so sharing
+    // changes no result. Emptied past 32 bases to bound memory.
+    static const std::shared_ptr<ModalBasisCache> bases = std::make_shared<ModalBasisCache>();
+    if (bases->size() > k_max_cached_bases)
+        bases->clear();
+    scene->world.modal_basis_cache = bases;
     Result<World> world = build_world(*scene);
     if (!world)
         return Verdict::Unbuilt;

@@ -3,10 +3,12 @@
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
 #include "supermodal/modal.h"
+#include "supermodal/scene.h"
 #include "supermodal/world.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -482,4 +484,29 @@ TEST(ModalWorld, RefusesBadModalDefs)
     EXPECT_EQ(sm::body_modal_basis(world, rigid), nullptr);
     EXPECT_TRUE(sm::body_modal_state(world, rigid).amplitudes.empty());
     EXPECT_FALSE(sm::set_body_modal_state(world, rigid, {}, {}).ok());
+}
+
+TEST(ModalWorld, WorldsSharingABasisCacheBuildItOnceAndStepAlike)
+{
+    // WorldDef::modal_basis_cache: a world rebuilt from the same scene (an editor reloading it, the fuzz
+    // harness) finds its bases already built; a basis is keyed by its whole def, so nothing else changes.
+    const sm::Result<sm::Scene> scene = sm::parse_scene(R"({"settings": {"dt": 0.001},
+      "bodies": [{"name": "floor", "shape": {"type": "plane"}},
+                 {"name": "jelly", "position": [0, 0.12, 0], "dynamics": {"type": "modal", "modes": 6},
+                  "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.1]}}]})");
+    ASSERT_TRUE(scene) << scene.error().message();
+    sm::Scene shared = *scene;
+    shared.world.modal_basis_cache = std::make_shared<sm::ModalBasisCache>();
+    sm::Result<sm::World> first = sm::build_world(shared), second = sm::build_world(shared),
+                          own = sm::build_world(*scene);
+    ASSERT_TRUE(first && second && own);
+    EXPECT_EQ(shared.world.modal_basis_cache->size(), 1);
+    const sm::ModalBasis* a = sm::body_modal_basis(*first, sm::find_body(*first, "jelly"));
+    EXPECT_EQ(a, sm::body_modal_basis(*second, sm::find_body(*second, "jelly"))); // the same object
+    EXPECT_NE(a, sm::body_modal_basis(*own, sm::find_body(*own, "jelly")));
+    for (int s = 0; s < 100; ++s) {
+        second->step();
+        own->step();
+    }
+    EXPECT_EQ(second->state_hash(), own->state_hash());
 }

@@ -17,6 +17,8 @@
 namespace supermodal
 {
 
+class ModalBasisCache; // supermodal/modal.h
+
 /// How to make a world. Start from default_world_def() and change what differs.
 struct WorldDef {
     double dt = 0.002;              ///< Fixed step [s], > 0. Penalty contact wants small steps.
@@ -30,6 +32,10 @@ struct WorldDef {
     int thread_count = 1;           ///< Threads for the step's per-pair work [-], in [1, 64]; the caller's
                           ///< thread plus thread_count − 1 pool threads. Results are bit-identical
                           ///< for any count; more than the free cores only adds waiting.
+    /// Where the world finds and keeps its modal bases (supermodal/modal.h). Null: a cache of its own.
+    /// Share one between worlds that rebuild the same scene (an editor reloading it, a test harness):
+    /// a basis is keyed by every field of its def, so a shared one changes no result, only build time.
+    std::shared_ptr<ModalBasisCache> modal_basis_cache;
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.

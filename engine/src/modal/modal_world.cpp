@@ -130,8 +130,8 @@ Result<modal::LatticeChoice> find_or_build_modal_basis(World::Impl& w, const Bod
 {
     const ModalBasisDef basis_def = modal_basis_def(def);
     if (def.modal.adaptive_tolerance > 0.0 && basis_def.lattice.cells == std::array<int, 3>{})
-        return modal::choose_lattice(w.modal_bases, basis_def);
-    Result<std::shared_ptr<const ModalBasis>> built = w.modal_bases.get_or_build(basis_def);
+        return modal::choose_lattice(*w.modal_bases, basis_def);
+    Result<std::shared_ptr<const ModalBasis>> built = w.modal_bases->get_or_build(basis_def);
     if (!built)
         return built.error();
     modal::LatticeChoice choice;

@@ -78,6 +78,8 @@ World::World(const WorldDef& def) : m_impl(std::make_unique<Impl>())
 {
     SM_ASSERT(validate(def).ok(), "invalid WorldDef");
     m_impl->def = validate(def).ok() ? def : default_world_def();
+    m_impl->modal_bases =
+        m_impl->def.modal_basis_cache ? m_impl->def.modal_basis_cache : std::make_shared<ModalBasisCache>();
     if (m_impl->def.thread_count > 1)
         m_impl->pool = std::make_unique<ThreadPool>(m_impl->def.thread_count);
 }

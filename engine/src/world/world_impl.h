@@ -26,7 +26,7 @@ struct World::Impl {
     ConstraintWorld constraints;                            ///< Penalty constraints (model + state).
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
-    ModalBasisCache modal_bases;                            ///< Model: one basis per distinct modal def.
+    std::shared_ptr<ModalBasisCache> modal_bases; ///< Model: one basis per distinct modal def (maybe shared).
     std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
     bool locked = false;              ///< True inside step(): mutations assert.
     std::unique_ptr<ThreadPool> pool; ///< Per-pair loops when def.thread_count > 1; null otherwise.
