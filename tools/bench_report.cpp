@@ -174,7 +174,8 @@ std::string bench_plot(const BenchSummary& s, const std::string& png_path)
                          (r.base ? std::string() : r.value) + "\"\n";
     }
     if (order.empty())
-        return "no configuration ran: nothing to plot";
+        return "nothing to plot: no configuration ran with a trajectory error above 0 (a static scene "
+               "moves nothing; the log axis has no place for 0)";
     std::sort(front.begin(), front.end(), [](const BenchRow* a, const BenchRow* b) {
         return a->cpu_ms_per_second < b->cpu_ms_per_second;
     });
