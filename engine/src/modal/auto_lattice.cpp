@@ -26,21 +26,6 @@ int dof_bound(const std::array<int, 3>& cells, int order)
     return static_cast<int>(std::min<long>(3 * nodes, 1L << 30));
 }
 
-} // namespace
-
-std::vector<double> frequency_changes(const ModalBasis& fine, const ModalBasis& coarse)
-{
-    std::vector<double> out(fine.frequencies_hz.size(), 1.0);
-    for (size_t k = 0; k < out.size() && k < coarse.frequencies_hz.size(); ++k) {
-        const double f = fine.frequencies_hz[k];
-        out[k] = std::abs(coarse.frequencies_hz[k] - f) / f;
-    }
-    return out;
-}
-
-namespace
-{
-
 void set_changes(LatticeChoice& choice, std::vector<double> changes)
 {
     choice.frequency_changes = std::move(changes);
@@ -50,6 +35,17 @@ void set_changes(LatticeChoice& choice, std::vector<double> changes)
 }
 
 } // namespace
+
+std::vector<double> frequency_changes(const ModalBasis& fine, const ModalBasis& coarse)
+{
+    std::vector<double> out(fine.frequencies_hz.size(), 1.0);
+    for (size_t k = 0; k < out.size() && k < coarse.frequencies_hz.size(); ++k) {
+        const double f = fine.frequencies_hz[k];
+        if (f > 0.0) // elastic modes are; a zero would leave the change at 1
+            out[k] = std::abs(coarse.frequencies_hz[k] - f) / f;
+    }
+    return out;
+}
 
 Result<LatticeChoice> choose_lattice(ModalBasisCache& cache, const ModalBasisDef& def, double target,
                                      int max_dofs)
