@@ -196,7 +196,8 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
 
     // Old points: material points of both bodies, re-measured along today's normal.
     std::vector<Candidate> old;
-    for (int i = 0; keeps_old_points(*a.collider, b.collider) && i < io.count; ++i) {
+    const int carried = keeps_old_points(*a.collider, b.collider) ? io.count : 0;
+    for (int i = 0; i < carried; ++i) {
         const Vec3 pa = to_world(a, io.points[i].local_a), pb = to_world(b, io.points[i].local_b);
         const double depth = dot(pb - pa, n);
         const Vec3 slide = (pb - pa) - depth * n;
@@ -254,7 +255,8 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
     };
 
     std::vector<Candidate> old;
-    for (int i = 0; keeps_old_points(*body.collider, nullptr) && i < io.count; ++i) {
+    const int carried = keeps_old_points(*body.collider, nullptr) ? io.count : 0;
+    for (int i = 0; i < carried; ++i) {
         const Candidate c = candidate(to_world(body, io.points[i].local_a));
         if (c.depth > -k_separate_rel * r)
             old.push_back(c);

@@ -47,8 +47,8 @@ Vec3 give_up_support(const Side& side, const Vec3& dir)
 
 // libccd 2.1 caps only MPR's last phase (max_iterations); portal discovery and refinement loop until
 // a tolerance test passes, which rounding can forbid (a 1e14 m body beside a 0.03 m one hung a step
-// for minutes, found by the fuzzer). Past the budget every support is the shape's centre: each of
-// libccd's loops then finds the new point not beyond the portal and reports no overlap.
+// for minutes, found by the fuzzer). Past the budget every support is give_up_support()'s point, which
+// each of libccd's loops finds not beyond the portal, and the query reports no overlap.
 void support_cb(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
 {
     const Side& side = *static_cast<const Side*>(obj);

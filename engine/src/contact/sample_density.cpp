@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -44,16 +45,35 @@ double reach(std::span<const SurfaceSample> points, const Vec3& n)
     return most;
 }
 
+// How far the surface reaches along each direction, from its reference sampling.
+std::vector<double> surface_reach(std::span<const SurfaceSample> reference, std::span<const Vec3> dirs)
+{
+    std::vector<double> out(dirs.size());
+    for (size_t i = 0; i < dirs.size(); ++i)
+        out[i] = reach(reference, dirs[i]);
+    return out;
+}
+
+// The largest shortfall of the samples' reach behind the surface's over the directions [m].
+double gap_behind(std::span<const double> surface, std::span<const SurfaceSample> samples,
+                  std::span<const Vec3> dirs)
+{
+    if (samples.empty())
+        return std::numeric_limits<double>::infinity();
+    double gap = 0.0;
+    for (size_t i = 0; i < dirs.size(); ++i)
+        gap = std::max(gap, surface[i] - reach(samples, dirs[i]));
+    return gap;
+}
+
 } // namespace
 
 double sampling_gap(std::span<const SurfaceSample> samples, std::span<const SurfaceSample> reference)
 {
-    if (samples.empty() || reference.empty())
+    if (reference.empty())
         return std::numeric_limits<double>::infinity();
-    double gap = 0.0;
-    for (const Vec3& n : directions())
-        gap = std::max(gap, reach(reference, n) - reach(samples, n));
-    return gap;
+    const std::vector<Vec3> dirs = directions();
+    return gap_behind(surface_reach(reference, dirs), samples, dirs);
 }
 
 SampleDensityChoice choose_sample_spacing(const ShapeDef& shape, double tolerance, int max_samples)
@@ -62,19 +82,12 @@ SampleDensityChoice choose_sample_spacing(const ShapeDef& shape, double toleranc
     constexpr double k_factors[] = {4.0, 2.0, 1.0, 0.5, 0.25}; // coarse to fine: the cheapest first
     const std::vector<Vec3> dirs = directions();
     // The reference's reach along each direction once, not once per candidate (the bulk of the work).
-    std::vector<double> surface(dirs.size());
-    {
-        const std::vector<SurfaceSample> reference =
-            sample_surface(shape, base * k_factors[std::size(k_factors) - 1] / 8.0, k_reference_samples);
-        for (size_t i = 0; i < dirs.size(); ++i)
-            surface[i] = reach(reference, dirs[i]);
-    }
+    const std::vector<double> surface = surface_reach(
+        sample_surface(shape, base * k_factors[std::size(k_factors) - 1] / 8.0, k_reference_samples), dirs);
     SampleDensityChoice choice;
     for (const double f : k_factors) {
         const std::vector<SurfaceSample> samples = sample_surface(shape, base * f, max_samples);
-        double gap = samples.empty() ? std::numeric_limits<double>::infinity() : 0.0;
-        for (size_t i = 0; i < dirs.size() && !samples.empty(); ++i)
-            gap = std::max(gap, surface[i] - reach(samples, dirs[i]));
+        const double gap = gap_behind(surface, samples, dirs);
         choice = {base * f, static_cast<int>(samples.size()), gap, gap <= tolerance};
         if (choice.met)
             break;
