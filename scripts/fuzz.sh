@@ -5,6 +5,7 @@
 # picks its extension); or cli_fuzz: the command line's arguments (tests/fuzz/cli_corpus, cli.dict).
 # New crashes land in build-fuzz/crashes/; a fixed one goes to tests/fuzz/regressions/ (replayed by
 # ctest, FuzzReplay.*), tests/fuzz/mesh_regressions/ or tests/fuzz/cli_regressions/.
+# SUPERMODAL_FUZZ_RUNS=N also stops the run after N inputs (whichever of the two limits comes first).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -47,6 +48,7 @@ leaks=1
 export ASAN_OPTIONS=detect_leaks=$leaks:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 set +e
+[ -n "${SUPERMODAL_FUZZ_RUNS:-}" ] && extra+=(-runs="$SUPERMODAL_FUZZ_RUNS")
 "$build/tests/fuzz/$target" "$corpus" "${extra[@]}" -max_total_time="$seconds" \
   -timeout=10 -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$build/crashes/" -print_final_stats=1 \
   >"$log" 2>&1
