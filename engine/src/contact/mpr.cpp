@@ -29,6 +29,9 @@ void to_ccd(const Vec3& p, ccd_vec3_t* out)
 // and the query's scale (the largest coordinate either body reaches).
 struct Side {
     const BodyView* body;
+    // world_from_body and its transpose: a query asks for dozens of supports, and a matrix rotates in
+    // half a quaternion's operations.
+    Mat3 rotation, inverse;
     int* calls;
     int budget;
     double scale;
@@ -56,7 +59,10 @@ void support_cb(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out)
         to_ccd(give_up_support(side, from_ccd(*dir)), out);
         return;
     }
-    to_ccd(body_support(*side.body, from_ccd(*dir)), out);
+    const BodyView& body = *side.body;
+    const Collider& c = *body.collider;
+    const Vec3 local = support_point(c.shape, side.inverse * from_ccd(*dir)) - c.com_shape;
+    to_ccd(body.position + side.rotation * local, out);
 }
 
 void centre_cb(const void* obj, ccd_vec3_t* out)
@@ -132,7 +138,9 @@ MprResult mpr_penetration(const BodyView& a, const BodyView& b, int support_budg
     MprResult r;
     int calls = 0; // both sides count: two calls per Minkowski support
     const double scale = reach.position + reach.extent;
-    const Side side_a{&a, &calls, support_budget, scale}, side_b{&b, &calls, support_budget, scale};
+    const Mat3 ra = to_mat3(a.orientation), rb = to_mat3(b.orientation);
+    const Side side_a{&a, ra, transpose(ra), &calls, support_budget, scale};
+    const Side side_b{&b, rb, transpose(rb), &calls, support_budget, scale};
     const int status = ccdMPRPenetration(&side_a, &side_b, &ccd, &depth, &dir, &pos);
     r.support_calls = calls / 2;
     r.gave_up = calls > 2 * support_budget;

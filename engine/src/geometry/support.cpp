@@ -84,6 +84,12 @@ Vec3 support_point(const ShapeDef& shape, const Vec3& direction)
     // Two rescalings: the first so that a ∘ d cannot overflow, the second so the largest is exactly 1.
     Vec3 c = hadamard(a, direction / m);
     c = c / std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+    if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
+        // The ellipsoid: a ∘ c / ‖c‖, one square root instead of two nested levels (the support map
+        // was 61% of the ellipsoid pile's step). ‖c‖ ∈ [1, √3]: the largest component is exactly 1.
+        const double len = length(c);
+        return {a.x * (c.x / len), a.y * (c.y / len), a.z * (c.z / len)};
+    }
     const DualResult inner = dual_level(c.x, c.y, shape.epsilon2);
     const DualResult outer = dual_level(inner.norm, c.z, shape.epsilon1);
     const double rho = outer.v[0];
