@@ -46,6 +46,26 @@ TEST(Support, SphereAndEllipsoidMatchClosedForm)
         EXPECT_NEAR(e[i], expected[i], k_round_off);
 }
 
+TEST(Support, EllipsoidShortcutAgreesWithTheNestedFormulaNearby)
+{
+    // ε1 = ε2 = 1 takes a closed form; ε = 1 ± 1e-9 takes the nested dual levels. The support point
+    // moves by O(δε · size) between them, so they agree to 1e-8 of the size over many directions and
+    // aspects up to 1:1000 (a wrong shortcut would differ by O(size)).
+    constexpr double k_agree_rel = 1e-8;
+    constexpr int k_directions = 200;
+    for (const sm::Vec3& a : {sm::Vec3{1, 1, 1}, sm::Vec3{0.06, 0.04, 0.03}, sm::Vec3{1000, 1, 0.5}})
+        for (int k = 0; k < k_directions; ++k) {
+            const sm::Vec3 d = fibonacci_direction(k, k_directions);
+            const sm::Vec3 exact = sm::support_point(superquadric(a, 1, 1), d);
+            const double size = std::max({a.x, a.y, a.z});
+            for (double e : {1.0 - 1e-9, 1.0 + 1e-9}) {
+                const sm::Vec3 nested = sm::support_point(superquadric(a, e, e), d);
+                for (int i = 0; i < 3; ++i)
+                    EXPECT_NEAR(exact[i], nested[i], k_agree_rel * size) << k;
+            }
+        }
+}
+
 TEST(Support, BoxOctahedronAndHullLimits)
 {
     // ε = 0.01: a generic direction's support point is the corner sign(d)·a up to factors
