@@ -7,6 +7,7 @@
 
 #include <benchmark/benchmark.h>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace sm = supermodal;
@@ -109,6 +110,44 @@ BENCHMARK(BM_ModalStress_StepWithPlasticity)
     ->Args({1, 0})
     ->Args({1, 1})
     ->Unit(benchmark::kMicrosecond);
+
+// A soft ball (r = 0.3 m, E = 200 kPa, ζ = 0.5, 12 modes) resting on the ground under its weight, stepped
+// after 1.5 s of settling: elastic, or plastic with the yield at `permille`/1000 of the settled peak
+// stress (above 1000 it stays elastic while resting, yet every substep checks). Args: permille (0:
+// elastic).
+void BM_ModalStress_RestingBall(benchmark::State& st)
+{
+    auto make = [](double yield) {
+        sm::World world(sm::default_world_def());
+        sm::BodyDef ground = sm::default_body_def();
+        ground.shape.type = sm::ShapeType::Plane;
+        ground.shape.plane_normal = {0, 1, 0};
+        ground.motion = sm::MotionType::Static;
+        (void)sm::create_body(world, ground);
+        sm::BodyDef def = sm::default_body_def();
+        def.shape.radii = {0.3, 0.3, 0.3};
+        def.position = {0, 0.3, 0};
+        def.modal.enabled = true;
+        def.modal.mode_count = 12;
+        def.modal.young = 2e5;
+        def.modal.damping_ratio = 0.5;
+        def.modal.yield_stress = yield;
+        const sm::Entity ball = sm::create_body(world, def);
+        for (int i = 0; i < 750; ++i)
+            world.step();
+        return std::pair{std::move(world), ball};
+    };
+    double yield = std::numeric_limits<double>::infinity();
+    if (st.range(0) > 0) {
+        auto [probe, ball] = make(yield);
+        yield = 1e-3 * static_cast<double>(st.range(0)) * sm::body_max_stress(probe, ball).max_von_mises;
+    }
+    auto [world, ball] = make(yield);
+    for (auto _ : st)
+        world.step();
+    st.counters["plastic_strain"] = sm::body_plastic_state(world, ball).plastic_strain;
+}
+BENCHMARK(BM_ModalStress_RestingBall)->Arg(0)->Arg(1250)->Arg(2000)->Unit(benchmark::kMicrosecond);
 
 // body_point_test on a deformed body (Newton on the deformation field) against the rigid rest test, for
 // points just inside the top of the body. Args: body, modal (0: the same shape, rigid).

@@ -1,5 +1,6 @@
 // Tests for engine/src/modal/stress.cpp and plasticity.cpp: stress of the modal field against beam
 // theory, and plastic relief (permanent set, yield bound, energy).
+#include "modal/stress.h"
 #include "modal_scenes.h"
 #include "supermodal/body.h"
 #include "supermodal/modal.h"
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <random>
 #include <vector>
 
 namespace sm = supermodal;
@@ -111,4 +113,44 @@ TEST(ModalStress, RootOfTheHalfCantileverMatchesBeamTheory)
     const sm::BodyStress peak = sm::body_max_stress(world, b);
     EXPECT_LE(std::abs(peak.where.x), k_board_length / 16 + 1e-9);
     EXPECT_NEAR(peak.max_von_mises, beam(0.0), 0.1 * beam(0.0));
+}
+
+TEST(ModalStress, PeakAboveAThresholdIsExactAndSkipsOnlyPointsThatCannotReachIt)
+{
+    // max_von_mises_above must give max_von_mises's peak exactly (same value, same point) wherever that
+    // peak exceeds the threshold, and a value at most the threshold otherwise; each point's bound
+    // (‖W S_p‖_F ‖q‖) must hold, so the largest bounds the peak. Random amplitudes over 12 decades.
+    sm::World world(sm::default_world_def());
+    const sm::BodyDef def = board({8, 1, 1}, 12);
+    const sm::Entity b = sm::create_body(world, def);
+    const sm::modal::StressModel model =
+        sm::modal::build_stress_model(*sm::body_modal_basis(world, b), def.shape);
+    ASSERT_EQ(model.point_bounds.size(), model.points.size());
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> decade(-9.0, 3.0);
+    for (int trial = 0; trial < 200; ++trial) {
+        std::vector<double> q(12);
+        const double scale = std::pow(10.0, decade(rng));
+        double q2 = 0.0;
+        for (double& x : q) {
+            x = scale * normal(rng);
+            q2 += x * x;
+        }
+        const sm::modal::StressPeak full = sm::modal::max_von_mises(model, q);
+        EXPECT_LE(full.von_mises, model.max_point_bound * std::sqrt(q2) * (1.0 + 1e-12));
+        for (double f : {0.5, 0.9, 0.999, 1.001, 2.0}) {
+            const double threshold = f * full.von_mises;
+            const sm::modal::StressPeak above = sm::modal::max_von_mises_above(model, q, threshold);
+            if (full.von_mises > threshold) {
+                EXPECT_EQ(above.von_mises, full.von_mises) << trial << " " << f;
+                EXPECT_EQ(above.point, full.point);
+            } else {
+                EXPECT_LE(above.von_mises, threshold);
+            }
+        }
+        // Far above every bound: nothing is evaluated.
+        EXPECT_EQ(sm::modal::max_von_mises_above(model, q, 2.0 * model.max_point_bound * std::sqrt(q2)).point,
+                  -1);
+    }
 }

@@ -13,17 +13,18 @@ PlasticStep relieve_plastic(const StressModel& model, const PlasticParams& param
                             double& io_plastic_strain)
 {
     PlasticStep out;
+    const double current_yield = params.yield_stress + params.hardening * io_plastic_strain;
+    const double room = params.max_plastic_strain - io_plastic_strain;
+    if (!params.plastic() || !(young > 0.0) || !(room > 0.0))
+        return out; // nothing can flow (elastic, or fully worked): no stress is evaluated
     const size_t r = std::min(q.size(), io_q_plastic.size());
     std::vector<double> elastic(r);
     for (size_t k = 0; k < r; ++k)
         elastic[k] = q[k] - io_q_plastic[k];
-    out.trial_von_mises = max_von_mises(model, elastic).von_mises;
+    // Only a peak above the yield matters: points that cannot reach it are not evaluated.
+    out.trial_von_mises = max_von_mises_above(model, elastic, current_yield).von_mises;
     out.von_mises = out.trial_von_mises;
-    if (!params.plastic() || !std::isfinite(out.trial_von_mises) || !(young > 0.0))
-        return out;
-    const double current_yield = params.yield_stress + params.hardening * io_plastic_strain;
-    const double room = params.max_plastic_strain - io_plastic_strain;
-    if (out.trial_von_mises <= current_yield || !(room > 0.0))
+    if (!std::isfinite(out.trial_von_mises) || out.trial_von_mises <= current_yield)
         return out;
     const double d_strain =
         std::min((out.trial_von_mises - current_yield) / (young + params.hardening), room);

@@ -23,7 +23,10 @@ struct PlasticParams {
 };
 
 struct PlasticStep {
-    double trial_von_mises = 0.0; ///< Peak von Mises stress of the elastic part before relief [Pa].
+    double trial_von_mises = 0.0; ///< Peak von Mises stress of the elastic part before relief [Pa]
+                                  ///< where it exceeds the current yield; else some value at most that
+                                  ///< (points that cannot yield are not evaluated), 0 when nothing can
+                                  ///< flow (elastic, or fully worked).
     double von_mises = 0.0;       ///< After relief [Pa].
     bool yielded = false;         ///< The rest shape moved.
 };

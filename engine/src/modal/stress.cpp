@@ -112,6 +112,39 @@ void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape,
     }
 }
 
+namespace
+{
+
+double point_von_mises(const double* s, size_t r, size_t used, std::span<const double> q)
+{
+    Voigt v{};
+    for (size_t comp = 0; comp < 6; ++comp) {
+        double sum = 0.0;
+        for (size_t k = 0; k < used; ++k)
+            sum += s[comp * r + k] * q[k];
+        v[comp] = sum;
+    }
+    return von_mises(v);
+}
+
+// vm² = ½[(a−b)² + (b−c)² + (c−a)²] + 3(d² + e² + f²) ≤ 1.5(a² + b² + c²) + 3(d² + e² + f²) = ‖W v‖²,
+// since (a−b)² + (b−c)² + (c−a)² = 3(a² + b² + c²) − (a + b + c)²; and ‖W S q‖ ≤ ‖W S‖_F ‖q‖.
+double point_bound(const double* s, size_t r)
+{
+    double sum = 0.0;
+    for (size_t comp = 0; comp < 6; ++comp) {
+        const double w2 = comp < 3 ? 1.5 : 3.0;
+        for (size_t k = 0; k < r; ++k)
+            sum += w2 * s[comp * r + k] * s[comp * r + k];
+    }
+    return std::sqrt(sum);
+}
+
+// Rounding of the bound's own sums (~r ulps): a point is skipped only below threshold / this.
+constexpr double k_bound_safety = 1.0 + 1e-9;
+
+} // namespace
+
 StressModel build_stress_model(const ModalBasis& basis, const ShapeDef& shape)
 {
     StressModel m;
@@ -149,6 +182,8 @@ StressModel build_stress_model(const ModalBasis& basis, const ShapeDef& shape)
                         for (int comp = 0; comp < 6; ++comp)
                             m.stress_modes[base + static_cast<size_t>(comp) * r + mode] = s[comp];
                     }
+                    m.point_bounds.push_back(point_bound(&m.stress_modes[base], static_cast<size_t>(r)));
+                    m.max_point_bound = std::max(m.max_point_bound, m.point_bounds.back());
                 }
             }
     return m;
@@ -161,14 +196,34 @@ StressPeak max_von_mises(const StressModel& model, std::span<const double> q)
     const size_t used = std::min(r, q.size());
     const double* s = model.stress_modes.data();
     for (size_t p = 0; p < model.points.size(); ++p, s += 6 * r) {
-        Voigt v{};
-        for (size_t comp = 0; comp < 6; ++comp) {
-            double sum = 0.0;
-            for (size_t k = 0; k < used; ++k)
-                sum += s[comp * r + k] * q[k];
-            v[comp] = sum;
+        const double vm = point_von_mises(s, r, used, q);
+        if (vm > peak.von_mises || peak.point < 0) {
+            peak.von_mises = vm;
+            peak.point = static_cast<int>(p);
         }
-        const double vm = von_mises(v);
+    }
+    return peak;
+}
+
+StressPeak max_von_mises_above(const StressModel& model, std::span<const double> q, double threshold)
+{
+    const size_t r = static_cast<size_t>(model.mode_count);
+    const size_t used = std::min(r, q.size());
+    double q2 = 0.0;
+    for (size_t k = 0; k < used; ++k)
+        q2 += q[k] * q[k];
+    const double q_norm = std::sqrt(q2) * k_bound_safety;
+    // Without the bounds (a model built elsewhere) or with a non-finite q: the full search.
+    if (model.point_bounds.size() != model.points.size() || !std::isfinite(q_norm))
+        return max_von_mises(model, q);
+    StressPeak peak;
+    if (!(model.max_point_bound * q_norm > threshold))
+        return peak;
+    const double* s = model.stress_modes.data();
+    for (size_t p = 0; p < model.points.size(); ++p, s += 6 * r) {
+        if (!(model.point_bounds[p] * q_norm > threshold))
+            continue; // cannot exceed the threshold, so cannot be a peak above it
+        const double vm = point_von_mises(s, r, used, q);
         if (vm > peak.von_mises || peak.point < 0) {
             peak.von_mises = vm;
             peak.point = static_cast<int>(p);

@@ -37,6 +37,10 @@ struct StressModel {
     std::vector<Vec3> points;         ///< Rest positions [m], shape frame.
     std::vector<double> stress_modes; ///< Per point, 6 × r: entry (point·6 + component)·r + k
                                       ///< [Pa/(√kg·m)].
+    /// Per point, ‖W·S_p‖_F with S_p its 6 × r block and W = diag(√1.5 ×3, √3 ×3) [Pa/(√kg·m)]: its
+    /// von Mises stress is at most this × ‖q‖ (see max_von_mises_above).
+    std::vector<double> point_bounds;
+    double max_point_bound = 0.0; ///< Largest of point_bounds [Pa/(√kg·m)].
 };
 /// Builds the model of a basis over `shape` (the shape it was built for: the inside test picks the
 /// points).
@@ -48,5 +52,12 @@ struct StressPeak {
 };
 /// The largest von Mises stress for amplitudes q: 6r multiply-adds per point.
 [[nodiscard]] StressPeak max_von_mises(const StressModel& model, std::span<const double> q);
+
+/// The same peak, exactly, where it exceeds `threshold` [Pa]; otherwise some value ≤ threshold (point
+/// −1 when no point could reach it). Points whose bound × ‖q‖ cannot exceed the threshold are skipped,
+/// and all of them at once when the largest bound cannot: a plastic body well under its yield stress
+/// costs r multiply-adds instead of 6r per point.
+[[nodiscard]] StressPeak max_von_mises_above(const StressModel& model, std::span<const double> q,
+                                             double threshold);
 
 } // namespace supermodal::modal
