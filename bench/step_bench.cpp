@@ -32,3 +32,21 @@ static void BM_Step_RigidSpinning(benchmark::State& st)
     st.counters["gyroscopic_fallbacks"] = static_cast<double>(world.warnings().gyroscopic_fallbacks);
 }
 BENCHMARK(BM_Step_RigidSpinning)->RangeMultiplier(10)->Range(10, 100'000)->Unit(benchmark::kMicrosecond);
+
+// A scene of static bodies only (a gallery, a scene held in the editor): N touching static spheres on a
+// line. No pair can collide, so the step skips the broadphase and the narrowphase's boxes.
+static void BM_Step_StaticOnly(benchmark::State& st)
+{
+    sm::World world;
+    for (int64_t i = 0; i < st.range(0); ++i) {
+        sm::BodyDef b = sm::default_body_def();
+        b.motion = sm::MotionType::Static;
+        b.shape.radii = {0.3, 0.3, 0.3};
+        b.position = {0.5 * double(i), 0.0, 0.0};
+        (void)sm::create_body(world, b);
+    }
+    for (auto _ : st)
+        world.step();
+    st.SetItemsProcessed(st.iterations() * st.range(0)); // body-steps
+}
+BENCHMARK(BM_Step_StaticOnly)->RangeMultiplier(10)->Range(10, 10'000)->Unit(benchmark::kMicrosecond);

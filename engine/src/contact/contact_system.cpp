@@ -112,6 +112,15 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         begin_step_events(io.events, 0);
         return def.substep_count;
     }
+    // Only pairs with a dynamic body collide: a scene of static and kinematic bodies (a gallery, a
+    // paused editor scene) skips the boxes, the grid and, per substep, the narrowphase's boxes.
+    bool any_dynamic = false;
+    reg.each<BodyModel>(
+        [&](Entity, const BodyModel& m) { any_dynamic |= m.collider && m.motion == MotionType::Dynamic; });
+    if (!any_dynamic) {
+        begin_step_events(io.events, 0);
+        return def.substep_count;
+    }
     const double dt = def.dt;
     reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, const Velocity& v) {
         if (!m.collider)
