@@ -6,6 +6,7 @@
 #include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
+#include "support/world_fixture.h"
 
 #include <benchmark/benchmark.h>
 #include <vector>
@@ -67,11 +68,7 @@ void BM_ModalWorld_BoardOnGround(benchmark::State& st)
 {
     const int modes = static_cast<int>(st.range(0));
     sm::World world(sm::default_world_def());
-    sm::BodyDef ground = sm::default_body_def();
-    ground.shape.type = sm::ShapeType::Plane;
-    ground.shape.plane_normal = {0, 1, 0};
-    ground.motion = sm::MotionType::Static;
-    (void)sm::create_body(world, ground);
+    (void)sm::test::add_ground(world);
     sm::BodyDef def = board(modes, sm::ModalIntegrator::Exact);
     def.modal.damping_ratio = 0.05;
     def.position = {0, 0.019, 0};

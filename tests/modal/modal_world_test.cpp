@@ -5,6 +5,7 @@
 #include "supermodal/modal.h"
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
+#include "support/world_fixture.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -318,18 +319,8 @@ TEST(ModalWorld, SoftSphereLandsWithoutGainingEnergy)
     // (measured before that: it bounced to 0.63 m from 0.5 m). It must never rise above its drop height
     // and must come to rest on the ground, deformed by its weight.
     sm::World world(sm::default_world_def());
-    sm::BodyDef ground = sm::default_body_def();
-    ground.shape.type = sm::ShapeType::Plane;
-    ground.shape.plane_normal = {0, 1, 0};
-    ground.motion = sm::MotionType::Static;
-    (void)sm::create_body(world, ground);
-    sm::BodyDef def = sm::default_body_def();
-    def.shape.radii = {0.3, 0.3, 0.3};
-    def.position = {0, 0.5, 0};
-    def.modal.enabled = true;
-    def.modal.young = 2e5;
-    def.modal.damping_ratio = 0.05;
-    const sm::Entity ball = sm::create_body(world, def);
+    (void)sm::test::add_ground(world);
+    const sm::Entity ball = sm::create_body(world, sm::test::soft_ball_def({0, 0.5, 0}, 0.05));
     double highest_after_contact = 0.0;
     bool touched = false;
     for (int i = 0; i < 1500; ++i) {

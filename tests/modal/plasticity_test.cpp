@@ -4,6 +4,7 @@
 #include "supermodal/body.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
+#include "support/world_fixture.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -215,17 +216,8 @@ struct Dent {
 Dent press_and_lift(double yield, double hardening)
 {
     sm::World world(sm::default_world_def());
-    sm::BodyDef ground = sm::default_body_def();
-    ground.shape.type = sm::ShapeType::Plane;
-    ground.shape.plane_normal = {0, 1, 0};
-    ground.motion = sm::MotionType::Static;
-    (void)sm::create_body(world, ground);
-    sm::BodyDef def = sm::default_body_def();
-    def.shape.radii = {0.3, 0.3, 0.3};
-    def.position = {0, 0.3, 0};
-    def.modal.enabled = true;
-    def.modal.young = 2e5;
-    def.modal.damping_ratio = 0.5;
+    (void)sm::test::add_ground(world);
+    sm::BodyDef def = sm::test::soft_ball_def({0, 0.3, 0}, 0.5);
     def.modal.yield_stress = yield;
     def.modal.hardening = hardening;
     const sm::Entity ball = sm::create_body(world, def);

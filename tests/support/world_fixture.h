@@ -18,6 +18,29 @@ inline BodyDef ellipsoid_def(Vec3 radii, Vec3 position = {}, double density = 10
     return def;
 }
 
+/// A static ground: the plane y = 0, normal +y.
+inline Entity add_ground(World& world)
+{
+    BodyDef def = default_body_def();
+    def.motion = MotionType::Static;
+    def.shape.type = ShapeType::Plane;
+    def.shape.plane_normal = {0, 1, 0};
+    return create_body(world, def);
+}
+
+/// The soft modal ball of the modal tests and benchmarks: radius 0.3 m, density 1000 kg/m³, E = 200 kPa
+/// (first mode 11.6 Hz), the given damping ratio [-], position [m] and otherwise default modal settings.
+inline BodyDef soft_ball_def(Vec3 position, double damping_ratio)
+{
+    BodyDef def = default_body_def();
+    def.shape.radii = {0.3, 0.3, 0.3};
+    def.position = position;
+    def.modal.enabled = true;
+    def.modal.young = 2e5;
+    def.modal.damping_ratio = damping_ratio;
+    return def;
+}
+
 /// Runs n fixed steps.
 inline void run_steps(World& world, int n)
 {
