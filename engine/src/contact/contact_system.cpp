@@ -108,15 +108,14 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
 {
     io.proxies.clear();
     io.pairs.clear();
-    if (!def.contact.enabled) {
-        begin_step_events(io.events, 0);
-        return def.substep_count;
-    }
-    // Only pairs with a dynamic body collide: a scene of static and kinematic bodies (a gallery, a
-    // paused editor scene) skips the boxes, the grid and, per substep, the narrowphase's boxes.
+    // No contact at all, or no pair with a dynamic body (only those collide): a scene of static and
+    // kinematic bodies (a gallery, a paused editor scene) skips the boxes, the grid and, per substep, the
+    // narrowphase's boxes.
     bool any_dynamic = false;
-    reg.each<BodyModel>(
-        [&](Entity, const BodyModel& m) { any_dynamic |= m.collider && m.motion == MotionType::Dynamic; });
+    if (def.contact.enabled)
+        reg.each<BodyModel>([&](Entity, const BodyModel& m) {
+            any_dynamic |= m.collider && m.motion == MotionType::Dynamic;
+        });
     if (!any_dynamic) {
         begin_step_events(io.events, 0);
         return def.substep_count;

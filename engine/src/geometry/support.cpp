@@ -97,8 +97,8 @@ Vec3 support_point(const ShapeDef& shape, const Vec3& direction)
     Vec3 c = hadamard(a, direction / m);
     c = c / std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
     if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
-        // The ellipsoid: a ∘ c / ‖c‖, one square root instead of two nested levels (the support map
-        // was 61% of the ellipsoid pile's step). ‖c‖ ∈ [1, √3]: the largest component is exactly 1.
+        // The ellipsoid whose ‖a ∘ d‖² left the fast path's range above: the same a ∘ c / ‖c‖ on the
+        // rescaled c, where ‖c‖ ∈ [1, √3] (the largest component is exactly 1).
         const double len = length(c);
         return {a.x * (c.x / len), a.y * (c.y / len), a.z * (c.z / len)};
     }
