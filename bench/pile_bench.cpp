@@ -11,14 +11,15 @@
 // through a half-space. Arguments: N, threads, substeps per step.
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
+#include "supermodal/tasks.h"
 #include "supermodal/world.h"
-#include "world/world_impl.h"
 
 #include <benchmark/benchmark.h>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
+#include <memory>
 
 namespace sm = supermodal;
 
@@ -40,10 +41,48 @@ double process_cpu_seconds()
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-sm::ThreadPool::CpuStats pool_stats(const sm::World& w)
+// The built-in pool seen through the host's side of the task interface, timing each part's thread CPU
+// time: the sum over parts, and per loop its busiest part.
+class TimedTasks final : public sm::TaskSystem
 {
-    return w.impl().pool ? w.impl().pool->cpu_stats() : sm::ThreadPool::CpuStats{};
-}
+  public:
+    explicit TimedTasks(int threads) : m_pool(sm::make_thread_pool(threads)), m_part_s(64, 0.0) {}
+    [[nodiscard]] int concurrency() const override { return m_pool->concurrency(); }
+    void run(int part_count, sm::TaskFn task, void* context) override
+    {
+        struct Timed {
+            sm::TaskFn task;
+            void* context;
+            double* part_s;
+        } timed{task, context, m_part_s.data()};
+        m_pool->run(
+            part_count,
+            [](void* ctx, int part) {
+                const auto& t = *static_cast<const Timed*>(ctx);
+                const double start = thread_cpu_seconds();
+                t.task(t.context, part);
+                t.part_s[part] = thread_cpu_seconds() - start;
+            },
+            &timed);
+        double busiest = 0.0;
+        for (int p = 0; p < part_count; ++p) {
+            parts_s += m_part_s[static_cast<size_t>(p)];
+            busiest = std::max(busiest, m_part_s[static_cast<size_t>(p)]);
+        }
+        busiest_s += busiest;
+    }
+    double parts_s = 0.0, busiest_s = 0.0; ///< Thread CPU time of all parts, and of each loop's busiest [s].
+
+  private:
+    static double thread_cpu_seconds()
+    {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+    }
+    std::shared_ptr<sm::TaskSystem> m_pool;
+    std::vector<double> m_part_s;
+};
 
 enum class Shape { Sphere, Ellipsoid, RoundedBox };
 
@@ -86,12 +125,12 @@ void add_wall(sm::World& w, sm::Vec3 normal, double offset)
     (void)sm::create_body(w, d);
 }
 
-sm::World make_pile(Shape shape, int n, int threads, int substeps)
+sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps)
 {
     sm::WorldDef def = sm::default_world_def();
     def.dt = 1.0 / 240.0;
     def.substep_count = substeps;
-    def.thread_count = threads;
+    def.task_system = tasks;
     sm::World w(def);
     const int per_layer = (n + k_layers - 1) / k_layers;
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
@@ -129,14 +168,15 @@ void BM_Pile(benchmark::State& st, Shape shape)
     size_t contacts = 0, pairs = 0;
     std::array<double, static_cast<size_t>(sm::Stage::Count)> stage_ms{};
     for (auto _ : st) {
-        sm::World w = make_pile(shape, n, threads, substeps);
+        auto tasks = std::make_shared<TimedTasks>(threads);
+        sm::World w = make_pile(shape, n, tasks, substeps);
         max_pen = 0.0;
         stage_ms.fill(0.0);
         for (int i = 0; i < k_steps - k_timed_steps; ++i)
             w.step();
         const auto start = std::chrono::steady_clock::now();
         const double cpu_start = process_cpu_seconds();
-        const sm::ThreadPool::CpuStats pool_start = pool_stats(w);
+        const double parts_start = tasks->parts_s, busiest_start = tasks->busiest_s;
         for (int i = 0; i < k_timed_steps; ++i) {
             w.step();
             max_pen = std::max(max_pen, sm::world_max_penetration(w));
@@ -149,12 +189,11 @@ void BM_Pile(benchmark::State& st, Shape shape)
         ms = 1e3 * seconds / k_timed_steps;
         cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
         // On free cores the loops take as long as their busiest part; everything else is serial.
-        const sm::ThreadPool::CpuStats pool_end = pool_stats(w);
-        const double parts_ms = 1e3 * (pool_end.parts_s - pool_start.parts_s) / k_timed_steps;
-        const double busiest_ms = 1e3 * (pool_end.busiest_s - pool_start.busiest_s) / k_timed_steps;
+        const double parts_ms = 1e3 * (tasks->parts_s - parts_start) / k_timed_steps;
+        const double busiest_ms = 1e3 * (tasks->busiest_s - busiest_start) / k_timed_steps;
         free_cores_ms = cpu_ms - parts_ms + busiest_ms;
         contacts = sm::world_contacts(w).size();
-        pairs = w.impl().contact.pairs.size();
+        pairs = w.profile().pair_count;
     }
     st.SetItemsProcessed(st.iterations() * k_timed_steps * n); // body-steps
     st.counters["ms_per_step"] = ms;

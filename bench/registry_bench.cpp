@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Entity registry: create and iterate 10^4..10^6 entities with two components.
-#include "world/registry.h"
+#include "core/registry.h"
 
 #include <benchmark/benchmark.h>
 

@@ -87,7 +87,7 @@ TEST(Constraint, AssemblyIsDeterministicAndSnapshotsBitExactly)
     run_steps(a.world, 300);
     EXPECT_EQ(a.world.state_hash(), straight);
     // The warm-start impulses are state: changing them changes the hash.
-    a.world.impl().constraints.reg.get<sm::ConstraintState>(sm::to_entity(a.joint)).impulse.x += 1e-9;
+    impl_of(a.world).constraints.reg.get<sm::ConstraintState>(sm::to_entity(a.joint)).impulse.x += 1e-9;
     EXPECT_NE(a.world.state_hash(), straight);
 }
 

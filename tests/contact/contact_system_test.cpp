@@ -4,6 +4,7 @@
 #include "supermodal/contact.h"
 #include "supermodal/world.h"
 #include "support/world_fixture.h"
+#include "world/world_impl.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -246,7 +247,7 @@ TEST(Contact, SameSceneSameHashAndSnapshotKeepsAnchors)
     run_steps(b, 400);
     EXPECT_EQ(a.state_hash(), b.state_hash());
     const sm::Snapshot snap = a.snapshot();
-    EXPECT_FALSE(snap.anchor_keys.empty());
+    EXPECT_FALSE(sm::impl_of(a).contact.anchors.empty());
     run_steps(a, 300);
     const uint64_t straight = a.state_hash();
     ASSERT_TRUE(a.restore(snap).ok());

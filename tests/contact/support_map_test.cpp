@@ -5,6 +5,7 @@
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
 #include "support/world_fixture.h"
+#include "world/world_impl.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -140,32 +141,51 @@ TEST(SupportMap, SameSceneSameHashAndRestoreContinuesBitIdentically)
     run_steps(b, 300);
     EXPECT_EQ(a.state_hash(), b.state_hash());
     const sm::Snapshot snap = a.snapshot();
-    ASSERT_FALSE(snap.manifold_keys.empty());
+    ASSERT_FALSE(sm::impl_of(a).contact.manifolds.empty());
     run_steps(a, 300);
     const uint64_t straight = a.state_hash();
     ASSERT_TRUE(a.restore(snap).ok());
     run_steps(a, 300);
     EXPECT_EQ(a.state_hash(), straight);
-    // The manifold is state: restoring without it must change the continuation.
-    sm::Snapshot stripped = snap;
-    stripped.manifold_keys.clear();
-    stripped.manifold_counts.clear();
-    stripped.manifold_points.clear();
-    ASSERT_TRUE(a.restore(stripped).ok());
+    // The manifold is state: restoring and then dropping it must change the continuation.
+    ASSERT_TRUE(a.restore(snap).ok());
+    sm::impl_of(a).contact.manifolds.clear();
     run_steps(a, 300);
     EXPECT_NE(a.state_hash(), straight);
 }
 
-TEST(SupportMap, CorruptManifoldSnapshotIsRefused)
+TEST(SupportMap, DamagedSnapshotIsRefusedAndChangesNothing)
 {
+    // Each byte of a snapshot holding a manifold flipped in turn: restore either refuses and leaves the
+    // world as it was, or accepts bytes that still read as a state (a flipped value) whose manifold
+    // counts are in range (4 points at most, or the narrowphase would read past its array).
     sm::World w = make_world(sm::ContactPath::SupportMap);
     add_floor(w);
     (void)add_box(w, 0.1, 0.3, {0, 0.099, 0});
     w.step();
-    sm::Snapshot s = w.snapshot();
-    ASSERT_FALSE(s.manifold_counts.empty());
-    s.manifold_counts[0] = 5;
-    EXPECT_FALSE(w.restore(s).ok());
+    const sm::Snapshot good = w.snapshot();
+    ASSERT_FALSE(sm::impl_of(w).contact.manifolds.empty());
+    const uint64_t before = w.state_hash();
+    std::vector<std::byte> bytes(good.bytes().begin(), good.bytes().end());
+    int refused = 0;
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        bytes[i] ^= std::byte{0xff};
+        const sm::Status s = w.restore(sm::Snapshot::from_bytes(bytes));
+        bytes[i] ^= std::byte{0xff};
+        if (!s.ok()) {
+            ++refused;
+            EXPECT_EQ(w.state_hash(), before) << "byte " << i << ": " << s.error().message();
+        }
+        for (const sm::PairManifold& m : sm::impl_of(w).contact.manifolds)
+            ASSERT_LE(m.count, sm::PairManifold::k_capacity) << "byte " << i;
+        ASSERT_TRUE(w.restore(good).ok());
+    }
+    EXPECT_GT(refused, 0);
+    // Truncated: refused, unchanged.
+    const sm::Status cut = w.restore(sm::Snapshot::from_bytes(good.bytes().first(good.bytes().size() - 8)));
+    ASSERT_FALSE(cut.ok());
+    EXPECT_NE(cut.error().what.find("ends early"), std::string::npos) << cut.error().what;
+    EXPECT_EQ(w.state_hash(), before);
 }
 
 TEST(SupportMap, SceneSettingChoosesThePath)

@@ -1,10 +1,14 @@
-// Tests for the threaded contact stages (engine/src/contact/contact_system.cpp on
-// engine/src/core/thread_pool.cpp): a pile gives the same state hash and the same events for any
-// thread count and across runs; the pool's partition; thread_count validation in Defs and scenes.
+// Tests for the threaded stages (engine/src/world/*.cpp through engine/src/core/parallel.h on
+// engine/src/core/thread_pool.cpp or a host's TaskSystem): a pile of rigid bodies and one of modal
+// bodies give the same state hash and the same events for any thread count, any scheduler and across
+// runs; the partition; thread_count validation in Defs and scenes.
+#include "core/parallel.h"
 #include "core/thread_pool.h"
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
+#include "supermodal/modal.h"
 #include "supermodal/scene.h"
+#include "supermodal/tasks.h"
 #include "supermodal/world.h"
 #include "support/world_fixture.h"
 
@@ -12,6 +16,8 @@
 #include <atomic>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <memory>
+#include <thread>
 #include <vector>
 
 namespace sm = supermodal;
@@ -31,11 +37,12 @@ sm::Entity add_static_plane(sm::World& w, sm::Vec3 normal, double offset)
 
 // ~100 spheres, ellipsoids and rounded boxes on a jittered grid in a 0.5 m wide box of planes,
 // low enough that they are piled up and touching well before 200 steps.
-sm::World make_pile(int threads)
+sm::World make_pile(int threads, std::shared_ptr<sm::TaskSystem> tasks = {})
 {
     sm::WorldDef def = sm::default_world_def();
     def.dt = 1.0 / 240.0;
     def.thread_count = threads;
+    def.task_system = std::move(tasks);
     sm::World w(def);
     add_static_plane(w, {0, 1, 0}, 0.0);
     add_static_plane(w, {1, 0, 0}, -0.25);
@@ -71,9 +78,9 @@ struct PileRun {
     std::vector<sm::ContactEvent> events;
 };
 
-PileRun run_pile(int threads, int steps)
+PileRun run_pile(int threads, int steps, std::shared_ptr<sm::TaskSystem> tasks = {})
 {
-    sm::World w = make_pile(threads);
+    sm::World w = make_pile(threads, std::move(tasks));
     PileRun out;
     for (int s = 0; s < steps; ++s) {
         w.step();
@@ -94,6 +101,58 @@ bool same_events(const std::vector<sm::ContactEvent>& x, const std::vector<sm::C
             x[i].impulse_on_a != y[i].impulse_on_a || x[i].normal_impulse != y[i].normal_impulse)
             return false;
     return true;
+}
+
+// A host scheduler that runs the parts on the calling thread, last part first.
+class ReverseSerialTasks final : public sm::TaskSystem
+{
+  public:
+    explicit ReverseSerialTasks(int concurrency) : m_concurrency(concurrency) {}
+    [[nodiscard]] int concurrency() const override { return m_concurrency; }
+    void run(int part_count, sm::TaskFn task, void* context) override
+    {
+        ++runs;
+        for (int p = part_count - 1; p >= 0; --p)
+            task(context, p);
+    }
+    int runs = 0;
+
+  private:
+    int m_concurrency;
+};
+
+// A host scheduler that starts one fresh thread per part (a stand-in for a game's job system).
+class ThreadPerPartTasks final : public sm::TaskSystem
+{
+  public:
+    [[nodiscard]] int concurrency() const override { return 4; }
+    void run(int part_count, sm::TaskFn task, void* context) override
+    {
+        std::vector<std::thread> threads;
+        for (int p = 0; p < part_count; ++p)
+            threads.emplace_back([=] { task(context, p); });
+        for (std::thread& t : threads)
+            t.join();
+    }
+};
+
+// Eight soft modal balls (supermodal tests' soft ball, scaled down) dropped on each other and the ground.
+sm::World make_modal_pile(int threads, const std::shared_ptr<sm::ModalBasisCache>& cache)
+{
+    sm::WorldDef def = sm::default_world_def();
+    def.dt = 1.0 / 240.0;
+    def.thread_count = threads;
+    def.modal_basis_cache = cache;
+    sm::World w(def);
+    sm::test::add_ground(w);
+    for (int i = 0; i < 8; ++i) {
+        sm::BodyDef d =
+            sm::test::soft_ball_def({0.25 * (i % 2) - 0.12, 0.12 + 0.2 * i, 0.02 * (i % 3)}, 0.02);
+        d.shape.radii = {0.1, 0.1, 0.1};
+        d.modal.mode_count = 6;
+        (void)sm::create_body(w, d);
+    }
+    return w;
 }
 
 } // namespace
@@ -127,14 +186,44 @@ TEST(ContactThreads, SnapshotRestoreRerunGivesTheSameHashWithTwoThreads)
     EXPECT_EQ(w.state_hash(), first);
 }
 
-TEST(ThreadPool, StaticPartitionCoversEveryIndexOnce)
+TEST(ContactThreads, AnyHostSchedulerGivesTheSameHashAsOneThread)
+{
+    constexpr int k_steps = 120;
+    const PileRun one = run_pile(1, k_steps);
+    auto reverse = std::make_shared<ReverseSerialTasks>(3);
+    const PileRun reversed = run_pile(1, k_steps, reverse);
+    EXPECT_GT(reverse->runs, k_steps); // the world really handed its loops to the host's scheduler
+    EXPECT_EQ(reversed.hash, one.hash);
+    EXPECT_TRUE(same_events(reversed.events, one.events));
+    const PileRun per_part = run_pile(1, k_steps, std::make_shared<ThreadPerPartTasks>());
+    EXPECT_EQ(per_part.hash, one.hash);
+    EXPECT_TRUE(same_events(per_part.events, one.events));
+}
+
+TEST(ContactThreads, ModalPileHashIsTheSameForAnyThreadCount)
+{
+    // Contact pairs with modal bodies, the modal update and the surfaces all run on the threads.
+    constexpr int k_steps = 240;
+    auto cache = std::make_shared<sm::ModalBasisCache>();
+    sm::World one = make_modal_pile(1, cache);
+    sm::test::run_steps(one, k_steps);
+    ASSERT_GT(sm::world_contacts(one).size(), 4u); // touching, or the test would prove nothing
+    for (int threads : {2, 3}) {
+        sm::World many = make_modal_pile(threads, cache);
+        sm::test::run_steps(many, k_steps);
+        EXPECT_EQ(many.state_hash(), one.state_hash()) << threads << " threads";
+    }
+}
+
+TEST(Parallel, StaticPartitionCoversEveryIndexOnce)
 {
     for (int threads : {1, 2, 3, 8}) {
         sm::ThreadPool pool(threads);
+        const sm::Parallel par(&pool);
         for (size_t count : {0u, 1u, 5u, 100u, 1001u}) {
             std::vector<std::atomic<int>> hits(count);
             std::vector<size_t> part_begin(static_cast<size_t>(threads), count + 1);
-            pool.parallel_for(count, 4, [&](size_t part, size_t begin, size_t end) {
+            par.for_parts(count, 4, [&](size_t part, size_t begin, size_t end) {
                 part_begin[part] = begin;
                 for (size_t i = begin; i < end; ++i)
                     ++hits[i];
@@ -144,20 +233,21 @@ TEST(ThreadPool, StaticPartitionCoversEveryIndexOnce)
             // Parts are contiguous, in order, and as the documented formula says.
             const size_t parts = std::clamp<size_t>(count / 4, 1, static_cast<size_t>(threads));
             for (size_t p = 0; p < parts && count > 0; ++p)
-                EXPECT_EQ(part_begin[p], sm::ThreadPool::part_begin(count, parts, p));
+                EXPECT_EQ(part_begin[p], sm::Parallel::part_begin(count, parts, p));
         }
     }
 }
 
-TEST(ThreadPool, RoundRobinBlocksCoverEveryIndexOnce)
+TEST(Parallel, RoundRobinBlocksCoverEveryIndexOnce)
 {
     constexpr size_t k_block = 3;
     for (int threads : {2, 3}) {
         sm::ThreadPool pool(threads);
+        const sm::Parallel par(&pool);
         constexpr size_t k_count = 100;
         std::vector<std::atomic<int>> hits(k_count);
         std::vector<std::atomic<int>> owner(k_count);
-        pool.parallel_for(
+        par.for_parts(
             k_count, 4,
             [&](size_t part, size_t begin, size_t end) {
                 EXPECT_LE(end - begin, k_block);
@@ -170,6 +260,22 @@ TEST(ThreadPool, RoundRobinBlocksCoverEveryIndexOnce)
         for (size_t i = 0; i < k_count; ++i) {
             EXPECT_EQ(hits[i].load(), 1) << threads << " threads, index " << i;
             EXPECT_EQ(owner[i].load(), static_cast<int>((i / k_block) % static_cast<size_t>(threads)));
+        }
+    }
+}
+
+TEST(ThreadPool, RunsEveryPartOnceEvenBeyondItsThreads)
+{
+    for (int threads : {1, 2, 3}) {
+        sm::ThreadPool pool(threads);
+        for (int parts : {0, 1, 2, 7}) {
+            std::vector<std::atomic<int>> hits(static_cast<size_t>(parts));
+            pool.run(
+                parts,
+                [](void* ctx, int part) { ++(*static_cast<std::vector<std::atomic<int>>*>(ctx))[part]; },
+                &hits);
+            for (int p = 0; p < parts; ++p)
+                EXPECT_EQ(hits[static_cast<size_t>(p)].load(), 1) << threads << " threads, part " << p;
         }
     }
 }

@@ -1,5 +1,5 @@
 // Tests for engine/src/world/registry.h.
-#include "world/registry.h"
+#include "core/registry.h"
 
 #include <algorithm>
 #include <gtest/gtest.h>

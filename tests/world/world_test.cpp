@@ -4,6 +4,8 @@
 #include "support/world_fixture.h"
 
 #include <gtest/gtest.h>
+#include <string>
+#include <vector>
 
 namespace sm = supermodal;
 using sm::test::ellipsoid_def;
@@ -99,6 +101,32 @@ TEST(World, RestoreRefusesAChangedBodySet)
     const sm::Status s = world.restore(snap);
     EXPECT_FALSE(s.ok());
     EXPECT_NE(s.error().what.find("created or destroyed"), std::string::npos);
+}
+
+TEST(World, SnapshotBytesRoundTripAndForeignLayoutsAreRefused)
+{
+    sm::World world = make_busy_world();
+    run_steps(world, 50);
+    const sm::Snapshot snap = world.snapshot();
+    EXPECT_GT(snap.layout_version(), 0u);
+    run_steps(world, 100);
+    const uint64_t straight = world.state_hash();
+    // Through bytes (as a host keeps them in a file): the same continuation.
+    const std::vector<std::byte> kept(snap.bytes().begin(), snap.bytes().end());
+    ASSERT_TRUE(world.restore(sm::Snapshot::from_bytes(kept)).ok());
+    run_steps(world, 100);
+    EXPECT_EQ(world.state_hash(), straight);
+    // Another layout version: refused with both versions named, the world unchanged.
+    std::vector<std::byte> other = kept;
+    other[4] = static_cast<std::byte>(static_cast<unsigned>(other[4]) + 1);
+    const sm::Status s = world.restore(sm::Snapshot::from_bytes(other));
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().what.find("layout version " + std::to_string(snap.layout_version() + 1)),
+              std::string::npos)
+        << s.error().what;
+    EXPECT_EQ(world.state_hash(), straight);
+    EXPECT_FALSE(world.restore(sm::Snapshot{}).ok());
+    EXPECT_EQ(world.state_hash(), straight);
 }
 
 TEST(World, TwoWorldsSideBySideDoNotInteract)

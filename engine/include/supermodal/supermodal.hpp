@@ -15,4 +15,5 @@
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
 #include "supermodal/shape.h"
+#include "supermodal/tasks.h"
 #include "supermodal/world.h"

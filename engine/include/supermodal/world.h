@@ -9,8 +9,10 @@
 #include "supermodal/result.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -18,6 +20,7 @@ namespace supermodal
 {
 
 class ModalBasisCache; // supermodal/modal.h
+class TaskSystem;      // supermodal/tasks.h
 
 /// How to make a world. Start from default_world_def() and change what differs.
 struct WorldDef {
@@ -29,9 +32,14 @@ struct WorldDef {
     ContactDef contact{};           ///< Penalty contact settings.
     int constraint_iterations = 4;  ///< Gauss–Seidel passes over the constraint springs per substep [-],
                                     ///< in [1, 100]; more lets chains of unequal masses hold tighter.
-    int thread_count = 1;           ///< Threads for the step's per-pair work [-], in [1, 64]; the caller's
-                          ///< thread plus thread_count − 1 pool threads. Results are bit-identical
-                          ///< for any count; more than the free cores only adds waiting.
+    int thread_count = 1;           ///< Threads of the built-in pool [-], in [1, 64]: the caller's thread
+                          ///< plus thread_count − 1 workers (none for 1). Unused with a task_system.
+                          ///< Results are bit-identical for any count; more than the free cores only
+                          ///< adds waiting.
+    /// The host's scheduler for the step's parallel loops (supermodal/tasks.h), shared with the host and
+    /// kept alive by the world. Null: the built-in pool of thread_count threads. Any scheduler and any
+    /// concurrency give the same bits.
+    std::shared_ptr<TaskSystem> task_system;
     /// Where the world finds and keeps its modal bases (supermodal/modal.h). Null: a cache of its own.
     /// Share one between worlds that rebuild the same scene (an editor reloading it, a test harness):
     /// a basis is keyed by every field of its def, so a shared one changes no result, only build time.
@@ -65,6 +73,7 @@ enum class Stage : uint8_t {
 struct StepProfile {
     std::array<double, static_cast<size_t>(Stage::Count)> stage_ms{};
     double total_ms = 0.0; ///< Wall time of the last step [ms].
+    size_t pair_count = 0; ///< Candidate pairs of the last step's broadphase [-].
 };
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.
@@ -80,30 +89,24 @@ struct StepWarnings {
     uint64_t modal_non_finite = 0;          ///< Modal bodies whose amplitudes turned NaN/Inf: reset to rest.
 };
 
-/// A saved copy of the world's dynamic state. Treat as opaque; restore() it into the same world.
-struct Snapshot {
-    double time = 0.0;
-    uint64_t step_count = 0;
-    double accumulator = 0.0;
-    std::vector<Entity> entities;         ///< Bodies in index order.
-    std::vector<double> values;           ///< Packed per-body state, k_values_per_body each.
-    std::vector<uint64_t> anchor_keys;    ///< Friction anchors: pair keys, sorted.
-    std::vector<Vec3> anchor_springs;     ///< Friction anchors: tangential spring extensions [m].
-    std::vector<double> anchor_twists;    ///< Friction anchors: torsional spring angles [rad].
-    std::vector<Vec3> anchor_rolls;       ///< Friction anchors: rolling spring angles [rad].
-    std::vector<double> anchor_stiffness; ///< Contact anchors: normal stiffness per point area held [N/m³].
-    std::vector<double> anchor_credits;   ///< Contact anchors: dissipated energy not spent on stiffening [J].
-    std::vector<Entity> constraints;      ///< Constraint handles (as entities) in index order.
-    std::vector<double> constraint_values; ///< Packed per-constraint state (broken flag, impulses).
-    uint64_t broken_constraint_count = 0;
+/// A saved copy of a world's dynamic state: opaque bytes that begin with a layout version. Restore it
+/// into the same world (or one built the same way, with the same build of the engine); keep the bytes
+/// in a file or send them elsewhere and make a Snapshot of them again with from_bytes().
+class Snapshot
+{
+  public:
+    Snapshot() = default;
+    /// The bytes: an 8-byte header ("SMSS", then the layout version), then the state.
+    [[nodiscard]] std::span<const std::byte> bytes() const { return m_bytes; }
+    /// A snapshot of bytes() kept earlier; World::restore() checks them (version, size, bodies).
+    [[nodiscard]] static Snapshot from_bytes(std::span<const std::byte> bytes);
+    /// The layout version in the header; 0 when the bytes are too short to hold a header.
+    [[nodiscard]] uint32_t layout_version() const;
+    [[nodiscard]] bool empty() const { return m_bytes.empty(); }
 
-    // Contact manifolds of support-map pairs, sorted by pair key; per point, the point on A then the
-    // point on B, each in its own body frame [m].
-    std::vector<uint64_t> manifold_keys;
-    std::vector<int> manifold_counts;
-    std::vector<Vec3> manifold_points;
-    std::vector<double> modal_values; ///< Modal bodies in index order: amplitudes, rates, host forces,
-                                      ///< plastic offsets (r each), accumulated plastic strain.
+  private:
+    friend class World;
+    std::vector<std::byte> m_bytes;
 };
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.
@@ -128,7 +131,8 @@ class World
     /// FNV-1a over the dynamic state in entity-index order: same scene + same build → same hash.
     [[nodiscard]] uint64_t state_hash() const;
     [[nodiscard]] Snapshot snapshot() const;
-    /// Restores a snapshot of this world; fails if bodies were created or destroyed since.
+    /// Restores a snapshot of this world. Refused, with the world unchanged, when the snapshot has another
+    /// layout version, is damaged, or bodies or constraints were created or destroyed since.
     Status restore(const Snapshot& snapshot);
 
     [[nodiscard]] const WorldDef& settings() const;
@@ -137,12 +141,16 @@ class World
     [[nodiscard]] const StepProfile& profile() const;
     [[nodiscard]] const StepWarnings& warnings() const;
 
-    struct Impl;
-    /// Engine-internal access; hosts use the free functions instead.
-    [[nodiscard]] Impl& impl() { return *m_impl; }
-    [[nodiscard]] const Impl& impl() const { return *m_impl; }
+    /// Changes the settings between steps. Refused (world unchanged) when `def` is invalid, changes
+    /// thread_count, task_system or modal_basis_cache (fixed at creation), or changes dt after the first
+    /// step (time is step_count · dt).
+    Status set_settings(const WorldDef& def);
+
+    struct Impl; ///< Engine-internal; hosts use the free functions.
 
   private:
+    friend Impl& impl_of(World& world);
+    friend const Impl& impl_of(const World& world);
     std::unique_ptr<Impl> m_impl;
 };
 

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // C API: deformed points, meshes and modal amplitudes (supermodal/supermodal.h).
 #include "capi/capi_internal.h"
-#include "world/world_impl.h"
 
 #include <algorithm>
 
@@ -81,15 +80,17 @@ sm_status sm_body_get_mesh(const sm_world* world, sm_body body, int resolution, 
                                  " vertices and " + std::to_string(mesh.indices.size()) + " indices");
         }
         // body_deformed_point's formula with the cached weights: bit-identical to it (tests/capi).
-        const World::Impl& w = world->world.impl();
-        const Pose& pose = w.reg.get<Pose>(e);
-        const Vec3 com = w.reg.get<BodyModel>(e).mass.center_of_mass;
-        const ModalBody* modal = w.reg.has<ModalBody>(e) ? &w.reg.get<ModalBody>(e) : nullptr;
+        const Vec3 centre = body_center_of_mass(world->world, e);
+        const Quat orientation = body_orientation(world->world, e);
+        const Vec3 com = body_mass_properties(world->world, e).center_of_mass;
+        const ModalBasis* basis = body_modal_basis(world->world, e);
+        const std::vector<double> q =
+            basis ? body_modal_state(world->world, e).amplitudes : std::vector<double>{};
         for (size_t i = 0; i < mesh.positions.size(); ++i) {
             Vec3 local = mesh.positions[i] - com;
-            if (modal != nullptr)
-                local += modal_displacement(*modal->basis, rest.weights[i], modal->q);
-            positions[i] = to_c(pose.position + rotate(pose.orientation, local));
+            if (basis != nullptr)
+                local += modal_displacement(*basis, rest.weights[i], q);
+            positions[i] = to_c(centre + rotate(orientation, local));
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
         return ok();

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // C API: errors, worlds, stepping, snapshots (supermodal/supermodal.h).
 #include "capi/capi_internal.h"
-#include "world/world_impl.h"
 
 #include <memory>
 #include <utility>
@@ -220,18 +219,14 @@ sm_status sm_world_set_def(sm_world* world, const sm_world_def* def)
         const WorldDef asked = from_c(*def);
         if (const Status s = validate(asked); !s)
             return invalid_argument("sm_world_set_def", s.error().where.c_str(), s.error().what.c_str());
-        if (asked.thread_count != next.thread_count)
-            return invalid_argument("sm_world_set_def", "thread_count", "cannot change after creation");
-        if (asked.dt != next.dt && world->world.step_count() > 0)
-            return invalid_argument("sm_world_set_def", "dt",
-                                    "can change only before the first step (time is step_count * dt)");
         next.dt = asked.dt;
+        next.thread_count = asked.thread_count;
         next.substep_count = asked.substep_count;
         next.gravity = asked.gravity;
         next.max_steps_per_advance = asked.max_steps_per_advance;
         next.constraint_iterations = asked.constraint_iterations;
-        // No public setter exists; the step reads def afresh each time, so changing it between steps is safe.
-        world->world.impl().def = next;
+        if (const Status s = world->world.set_settings(next); !s)
+            return invalid_argument("sm_world_set_def", s.error().where.c_str(), s.error().what.c_str());
         return ok();
     });
 }
@@ -243,7 +238,10 @@ sm_status sm_world_set_gravity(sm_world* world, sm_vec3 gravity)
             return s;
         if (!finite(gravity))
             return invalid_argument("sm_world_set_gravity", "gravity", "expected a finite vector");
-        world->world.impl().def.gravity = to_vec(gravity);
+        WorldDef next = world->world.settings();
+        next.gravity = to_vec(gravity);
+        if (const Status s = world->world.set_settings(next); !s)
+            return invalid_argument("sm_world_set_gravity", s.error().where.c_str(), s.error().what.c_str());
         return ok();
     });
 }

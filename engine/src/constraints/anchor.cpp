@@ -68,13 +68,13 @@ Vec3 world_point(const BodyModel& m, const Pose& p, const Vec3& local)
     return p.position + rotate(p.orientation, local - m.mass.center_of_mass);
 }
 
-void refresh_anchors(ConstraintWorld& cw, const Registry& bodies, Entity body)
+void refresh_anchors(ConstraintWorld& cw, Entity body, const ShapeDef& shape)
 {
     cw.reg.each<ConstraintModel>([&](Entity, ConstraintModel& c) {
         if (c.def.a == body)
-            c.local_a = resolve_anchor(bodies.get<BodyModel>(body).shape, c.def.anchor_a);
+            c.local_a = resolve_anchor(shape, c.def.anchor_a);
         if (c.def.b == body)
-            c.local_b = resolve_anchor(bodies.get<BodyModel>(body).shape, c.def.anchor_b);
+            c.local_b = resolve_anchor(shape, c.def.anchor_b);
     });
 }
 

@@ -3,16 +3,15 @@
 // the bodies in a registry of their own so constraint handles never alias body handles.
 #pragma once
 
+#include "core/registry.h"
+#include "dynamics/body.h"
 #include "supermodal/constraint.h"
 #include "supermodal/shape.h"
-#include "world/components.h"
 
 #include <vector>
 
 namespace supermodal
 {
-
-struct StepContext;
 
 /// Model: fixed between steps. Local anchors are re-resolved when a body's shape changes.
 struct ConstraintModel {
@@ -23,10 +22,6 @@ struct ConstraintModel {
     Quat rest_relative{};     ///< q_a⁻¹·q_b at creation (weld, joint limits).
     Vec3 axis_a{0, 0, 1};     ///< Unit limit axis, a's frame.
 };
-
-/// Doubles per constraint in a Snapshot: broken flag, linear impulse (3), angular impulse (3), limits (2 ×
-/// 3).
-inline constexpr size_t k_values_per_constraint = 13;
 
 /// State and derived values. `broken` and the impulses (which warm-start the next substep) are state:
 /// hashed and snapshotted; the rest is recomputed.
@@ -62,13 +57,11 @@ struct ConstraintWorld {
 [[nodiscard]] Vec3 resolve_anchor(const ShapeDef& shape, const AnchorDef& anchor);
 /// World point of a shape-frame point on a body [m].
 [[nodiscard]] Vec3 world_point(const BodyModel& m, const Pose& p, const Vec3& local);
-/// Re-resolves surface anchors on `body` after its shape changed.
-void refresh_anchors(ConstraintWorld& cw, const Registry& bodies, Entity body);
+/// Re-resolves surface anchors on `body` after its shape changed to `shape`.
+void refresh_anchors(ConstraintWorld& cw, Entity body, const ShapeDef& shape);
 /// Destroys the constraints that hold `body` and its parent links (called when the body is destroyed).
 void drop_constraints_of(ConstraintWorld& cw, Entity body);
 /// Sorted keys (lower index << 32 | higher index) of body pairs that must not collide.
 void non_colliding_pairs(const ConstraintWorld& cw, std::vector<uint64_t>& out_keys);
-/// The springs' forces into velocities for one substep; updates errors and breaks.
-void apply_constraint_forces(const StepContext& ctx, Registry& bodies, ConstraintWorld& cw);
 
 } // namespace supermodal

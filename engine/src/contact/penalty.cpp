@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "contact/penalty.h"
 
-#include "modal/modal_world.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -199,7 +197,8 @@ double ZetaCache::get(double e)
 
 PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const PenaltyBody& a,
                        const PenaltyBody& b, std::span<const ContactPoint> points,
-                       const PairAnchor* old_anchor, ZetaCache& io_zeta, Registry* modal)
+                       const PairAnchor* old_anchor, ZetaCache& io_zeta, const PairModes* modes,
+                       std::span<double> out_point_force)
 {
     PairForce out;
     const BodyModel& ma = *a.model;
@@ -229,13 +228,13 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     // where φ is small, and the spring was stiff enough to throw the tips' modes to 33× the drop energy
     // in one step (docs/stability.md).
     auto modal_inv = [&](bool along_normal) {
-        if (modal == nullptr)
+        if (modes == nullptr)
             return 0.0;
         double sum = 0.0;
         for (const ContactPoint& cp : points) {
             const Vec3 d = along_normal ? cp.normal : Vec3{};
-            sum += cp.weight * (modal_inverse_mass(*modal, pair.a, cp.point, d, params.h) +
-                                modal_inverse_mass(*modal, pair.b, cp.point, d, params.h));
+            sum += cp.weight * (modes->inverse_mass(modes->ctx, pair.a, cp.point, d) +
+                                modes->inverse_mass(modes->ctx, pair.b, cp.point, d));
         }
         return sum / weight_sum;
     };
@@ -269,7 +268,8 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
 
     Vec3 total{}, torque_a{}, torque_b{};
     double normal_force = 0.0, deepest = 0.0, dissipated = 0.0;
-    for (const ContactPoint& cp : points) {
+    for (size_t i = 0; i < points.size(); ++i) {
+        const ContactPoint& cp = points[i];
         const double vn =
             dot(velocity_at(va, pa.position, cp.point) - velocity_at(vb, pb.position, cp.point), cp.normal);
         // No pull: a separating contact whose dashpot would exceed its spring just lets go.
@@ -280,10 +280,8 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
         total += fv;
         torque_a += cross(cp.point - pa.position, fv);
         torque_b -= cross(cp.point - pb.position, fv);
-        if (modal != nullptr) { // deforms modal bodies; a no-op for rigid ones
-            modal_add_point_load(*modal, pair.a, cp.point, fv);
-            modal_add_point_load(*modal, pair.b, cp.point, -1.0 * fv);
-        }
+        if (i < out_point_force.size())
+            out_point_force[i] = f;
         normal_force += f;
         deepest = std::max(deepest, cp.depth);
     }
@@ -313,10 +311,6 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     }
     torque_a += cross(centroid - pa.position, ft);
     torque_b -= cross(centroid - pb.position, ft);
-    if (modal != nullptr) {
-        modal_add_point_load(*modal, pair.a, centroid, ft);
-        modal_add_point_load(*modal, pair.b, centroid, -1.0 * ft);
-    }
     // Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
     // friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the
     // patch's second moment). Without it a single friction anchor lets a resting face spin up.
@@ -347,6 +341,7 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
     torque_b += out.torque_b;
     out.touching = true;
     out.force_a = total + ft;
+    out.friction_force = ft;
     out.torque_a = torque_a;
     out.torque_b = torque_b;
     out.normal_force = normal_force;

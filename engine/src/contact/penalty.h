@@ -7,8 +7,8 @@
 
 #include "contact/broadphase.h"
 #include "contact/narrowphase.h"
+#include "dynamics/body.h"
 #include "supermodal/contact.h"
-#include "world/components.h"
 
 #include <array>
 #include <cstdint>
@@ -55,6 +55,7 @@ struct PairForce {
     Vec3 torque_a{};                ///< Torque on a about its centre of mass [N·m], world.
     Vec3 torque_b{};                ///< Torque on b about its centre of mass [N·m], world.
     double normal_force = 0.0;      ///< Σ of the points' normal forces [N].
+    Vec3 friction_force{};          ///< Tangential part of force_a [N], world, at info.point (the centroid).
     PairAnchor anchor{};            ///< The pair's anchor after this substep's forces (before the motion).
     ContactInfo info{};             ///< The pair's summary for world_contacts().
 };
@@ -67,13 +68,24 @@ struct PenaltyParams {
     double h = 0.0; ///< Substep [s].
 };
 
+/// The modes of a pair's bodies as its springs feel them: contact knows no modes, the world fills this in.
+/// Called from any thread, so it must only read (its scratch belongs to the calling thread).
+struct PairModes {
+    /// Extra inverse mass of `body` [1/kg] at world point x [m] for a push along unit world direction d
+    /// held over the substep (d = 0: the bound over directions); 0 for a rigid body.
+    double (*inverse_mass)(void* ctx, Entity body, const Vec3& x, const Vec3& d) = nullptr;
+    void* ctx = nullptr;
+};
+
 /// The forces of a touching pair given its points (from b towards a); old_anchor is the pair's anchor
-/// from the last substep, or null. With `modal` (the world's registry, serial callers only), modal
-/// bodies' modes join the effective masses and take each point's force as a load.
+/// from the last substep, or null. With `modes`, the bodies' modes join the effective masses; the loads
+/// they take are each point's normal force (written to out_point_force, one per point, when given) and
+/// PairForce::friction_force at the centroid: the caller adds them to the modes in pair order.
 [[nodiscard]] PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const PenaltyBody& a,
                                      const PenaltyBody& b, std::span<const ContactPoint> points,
                                      const PairAnchor* old_anchor, ZetaCache& io_zeta,
-                                     Registry* modal = nullptr);
+                                     const PairModes* modes = nullptr,
+                                     std::span<double> out_point_force = {});
 
 /// Velocity of the body point `point` [m/s], world.
 [[nodiscard]] inline Vec3 velocity_at(const Velocity& v, const Vec3& centre, const Vec3& point)

@@ -2,29 +2,21 @@
 #include "core/thread_pool.h"
 
 #include <algorithm>
-#include <ctime>
 
 namespace supermodal
 {
-namespace
-{
 
-double thread_cpu_seconds()
+std::shared_ptr<TaskSystem> make_thread_pool(int thread_count)
 {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+    return std::make_shared<ThreadPool>(std::clamp(thread_count, 1, 64));
 }
-
-} // namespace
 
 ThreadPool::ThreadPool(int thread_count)
 {
     const int workers = std::max(thread_count, 1) - 1;
-    m_part_cpu.assign(static_cast<size_t>(workers) + 1, 0.0);
     m_workers.reserve(static_cast<size_t>(workers));
     for (int i = 0; i < workers; ++i)
-        m_workers.emplace_back([this, i] { worker_main(static_cast<size_t>(i) + 1); });
+        m_workers.emplace_back([this, i] { worker_main(i + 1); });
 }
 
 ThreadPool::~ThreadPool()
@@ -38,49 +30,38 @@ ThreadPool::~ThreadPool()
         t.join();
 }
 
-size_t ThreadPool::part_count(size_t count, size_t min_chunk) const
+void ThreadPool::run(int part_count, TaskFn task, void* context)
 {
-    const size_t by_size = count / std::max<size_t>(min_chunk, 1);
-    return std::clamp<size_t>(by_size, 1, static_cast<size_t>(thread_count()));
-}
-
-void ThreadPool::run(size_t count, size_t parts, size_t block, Call call, void* ctx)
-{
+    if (part_count <= 0)
+        return;
+    const int busy_workers = std::min(part_count, concurrency()) - 1;
+    if (busy_workers == 0) {
+        for (int p = 0; p < part_count; ++p)
+            task(context, p);
+        return;
+    }
     {
         std::lock_guard lock(m_mutex);
-        m_count = count;
-        m_parts = parts;
-        m_block = block;
-        m_call = call;
-        m_ctx = ctx;
-        m_pending = parts - 1;
+        m_parts = part_count;
+        m_task = task;
+        m_context = context;
+        m_pending = busy_workers;
         ++m_generation;
     }
     m_start.notify_all();
-    run_part(0);
+    run_parts_of(0);
     std::unique_lock lock(m_mutex);
     m_done.wait(lock, [this] { return m_pending == 0; });
-    double busiest = 0.0;
-    for (size_t p = 0; p < parts; ++p) {
-        m_stats.parts_s += m_part_cpu[p];
-        busiest = std::max(busiest, m_part_cpu[p]);
-    }
-    m_stats.busiest_s += busiest;
 }
 
-// Runs one part of the current job (its fields are stable until every part is done).
-void ThreadPool::run_part(size_t part)
+// The parts of the current run that belong to `thread` (its fields are stable until every part is done).
+void ThreadPool::run_parts_of(int thread)
 {
-    const double start = thread_cpu_seconds();
-    if (m_block == 0)
-        m_call(m_ctx, part, part_begin(m_count, m_parts, part), part_begin(m_count, m_parts, part + 1));
-    else
-        for (size_t begin = part * m_block; begin < m_count; begin += m_parts * m_block)
-            m_call(m_ctx, part, begin, std::min(begin + m_block, m_count));
-    m_part_cpu[part] = thread_cpu_seconds() - start;
+    for (int p = thread; p < m_parts; p += concurrency())
+        m_task(m_context, p);
 }
 
-void ThreadPool::worker_main(size_t worker)
+void ThreadPool::worker_main(int thread)
 {
     uint64_t seen = 0;
     for (;;) {
@@ -89,11 +70,11 @@ void ThreadPool::worker_main(size_t worker)
         if (m_stop)
             return;
         seen = m_generation;
-        const size_t parts = m_parts;
+        const int parts = m_parts;
         lock.unlock();
-        // A worker without a part this time (parts < threads) just waits for the next job.
-        if (worker < parts) {
-            run_part(worker);
+        // A worker without a part this time (parts < threads) just waits for the next run.
+        if (thread < parts) {
+            run_parts_of(thread);
             lock.lock();
             if (--m_pending == 0)
                 m_done.notify_one();

@@ -4,7 +4,7 @@
 // hidden modes still step (r multiply-adds each): they tell when to show them, with their motion so far.
 #pragma once
 
-#include "world/components.h"
+#include "modal/modal_body.h"
 
 #include <span>
 

@@ -87,14 +87,13 @@ modal::ModeStep mode_map(const ModalBody& b, size_t k, double h)
 
 } // namespace
 
-bool modal_anchor(Registry& reg, Entity e, const Vec3& local, double h, bool with_rotation, ModalAnchor& out)
+bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bool with_rotation,
+                  ModalAnchor& out)
 {
     out = ModalAnchor{};
-    ModalBody* b = reg.find<ModalBody>(e);
     if (b == nullptr || !is_finite(local) || !(h > 0.0))
         return false;
     out.h = h;
-    const Quat& rot = reg.get<Pose>(e).orientation;
     const ModalBasis& basis = *b->basis;
     mode_field(basis, local, out.phi);
     if (with_rotation)

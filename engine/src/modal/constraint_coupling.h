@@ -10,7 +10,7 @@
 // step near ωh = π (spectral radius 1.06 per substep, computed for one mode against a fixed anchor).
 #pragma once
 
-#include "world/components.h"
+#include "modal/modal_body.h"
 
 #include <vector>
 
@@ -31,10 +31,12 @@ struct ModalAnchor {
     [[nodiscard]] bool active() const { return body != nullptr; }
 };
 
-/// Fills `out` for the anchor at rest point `local` [m] (shape frame) of body e, for substep h [s];
-/// `with_rotation` also evaluates ψ = ½∇×φ (by central differences inside the lattice box). Returns
-/// false (out.body null) for a rigid body or a non-finite pose.
-bool modal_anchor(Registry& reg, Entity e, const Vec3& local, double h, bool with_rotation, ModalAnchor& out);
+/// Fills `out` for the anchor at rest point `local` [m] (shape frame) of modal body `b` (null: rigid) whose
+/// world_from_body rotation is `rot`, for substep h [s]; `with_rotation` also evaluates ψ = ½∇×φ (by
+/// central differences inside the lattice box). Returns false (out.body null) for a rigid body or a
+/// non-finite anchor.
+bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bool with_rotation,
+                  ModalAnchor& out);
 /// The anchor's mean modal velocity over the substep [m/s]: Σ φ_k (drift_k + gain_k Q_k), with Q the
 /// generalized forces constraints have put on the body so far in this substep.
 [[nodiscard]] Vec3 modal_anchor_velocity(const ModalAnchor& a);

@@ -2,9 +2,9 @@
 #include "supermodal/body.h"
 
 #include "core/assert.h"
-#include "modal/modal_world.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
+#include "world/modal_system.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -37,14 +37,14 @@ bool same_shape(const ShapeDef& a, const ShapeDef& b)
 // Looks up a live body; asserts (and returns null) on a stale or foreign handle.
 const World::Impl* live(const World& world, Entity e)
 {
-    const World::Impl& w = world.impl();
+    const World::Impl& w = impl_of(world);
     const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
     SM_ASSERT(ok, "stale or null body handle");
     return ok ? &w : nullptr;
 }
 World::Impl* live_mut(World& world, Entity e)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
     SM_ASSERT(ok, "stale or null body handle");
     SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
@@ -77,7 +77,8 @@ void set_mass_model(BodyModel& model, const ShapeDef& shape, double density)
 
 // Colliders are built once per distinct shape and shared: a pile of identical bodies holds one sample set.
 // An auto body (sampling_tolerance > 0) whose scene leaves the spacing automatic gets the coarsest
-// spacing whose measured sampling gap stays within the tolerance (measured once per shape: 16-33 ms in Release).
+// spacing whose measured sampling gap stays within the tolerance (measured once per shape: 16-33 ms in
+// Release).
 std::shared_ptr<const Collider> collider_for(World::Impl& w, const ShapeDef& shape, const Vec3& com,
                                              double sampling_tolerance)
 {
@@ -154,7 +155,7 @@ Status validate(const BodyDef& def)
 
 Entity create_body(World& world, const BodyDef& def)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     const Status status = validate(def);
     SM_ASSERT(status.ok(), "invalid BodyDef (call validate() for the reason)");
     SM_ASSERT(!w.locked, "bodies cannot be created while the world steps");
@@ -213,13 +214,13 @@ void destroy_body(World& world, Entity body)
 
 bool world_valid(const World& world, Entity body)
 {
-    return world.impl().reg.valid(body) && world.impl().reg.has<BodyModel>(body);
+    return impl_of(world).reg.valid(body) && impl_of(world).reg.has<BodyModel>(body);
 }
 
 std::vector<Entity> world_bodies(const World& world)
 {
     std::vector<Entity> out;
-    const Registry& reg = world.impl().reg;
+    const Registry& reg = impl_of(world).reg;
     reg.pool().for_each_alive([&](Entity e) {
         if (reg.has<BodyModel>(e))
             out.push_back(e);
@@ -230,7 +231,7 @@ std::vector<Entity> world_bodies(const World& world)
 Entity find_body(const World& world, std::string_view name)
 {
     for (Entity e : world_bodies(world))
-        if (world.impl().reg.get<BodyModel>(e).name == name)
+        if (impl_of(world).reg.get<BodyModel>(e).name == name)
             return e;
     return Entity{};
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "world/faults.h"
+#include "core/faults.h"
 
 #include "core/assert.h"
 #include "world/world_impl.h"
@@ -9,7 +9,7 @@ namespace supermodal
 
 void world_set_fault_callback(World& world, FaultEventFn fn, void* user_data)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     SM_ASSERT(!w.locked, "world_set_fault_callback() called from inside a step");
     if (w.locked)
         return;
@@ -19,7 +19,7 @@ void world_set_fault_callback(World& world, FaultEventFn fn, void* user_data)
 
 std::span<const FaultEvent> world_fault_events(const World& world)
 {
-    return world.impl().faults.events;
+    return impl_of(world).faults.events;
 }
 
 const char* fault_kind_name(FaultKind kind)

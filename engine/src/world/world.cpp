@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "supermodal/world.h"
 
-#include "contact/contact_system.h"
 #include "core/assert.h"
-#include "dynamics/integrate.h"
-#include "modal/modal_world.h"
+#include "core/thread_pool.h"
+#include "world/constraint_system.h"
+#include "world/contact_system.h"
+#include "world/integrate.h"
+#include "world/modal_system.h"
 #include "world/world_impl.h"
 
 #include <chrono>
@@ -80,8 +82,10 @@ World::World(const WorldDef& def) : m_impl(std::make_unique<Impl>())
     m_impl->def = validate(def).ok() ? def : default_world_def();
     m_impl->modal_bases =
         m_impl->def.modal_basis_cache ? m_impl->def.modal_basis_cache : std::make_shared<ModalBasisCache>();
-    if (m_impl->def.thread_count > 1)
-        m_impl->pool = std::make_unique<ThreadPool>(m_impl->def.thread_count);
+    m_impl->tasks = m_impl->def.task_system;
+    if (!m_impl->tasks && m_impl->def.thread_count > 1)
+        m_impl->tasks = make_thread_pool(m_impl->def.thread_count);
+    m_impl->parallel = Parallel(m_impl->tasks.get());
 }
 World::~World() = default;
 World::World(World&&) noexcept = default;
@@ -100,14 +104,15 @@ void World::Impl::step()
         fn();
         profile.stage_ms[static_cast<size_t>(stage)] += ms_since(start);
     };
-    store_previous_poses(reg);
+    store_previous_poses(parallel, reg);
     int substeps = def.substep_count;
     run(Stage::Broadphase, [&] {
         non_colliding_pairs(constraints, contact.excluded_pairs);
         substeps = update_pairs(def, reg, contact);
+        profile.pair_count = contact.pairs.size();
     });
     // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
-    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -121,23 +126,23 @@ void World::Impl::step()
     for (int i = 0; i < ctx.substep_count; ++i) {
         faults.substep = i;
         run(Stage::IntegrateForces, [&] {
-            integrate_forces(ctx, reg);
-            freeze_non_finite(ctx, Stage::IntegrateForces, reg, warnings);
+            integrate_forces(ctx, parallel, reg);
+            freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, warnings);
         });
-        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, pool.get(), contact); });
+        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
         run(Stage::PenaltyForces, [&] {
-            apply_penalty_forces(def, ctx, reg, pool.get(), contact, warnings);
+            apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, reg, constraints);
-            freeze_non_finite(ctx, Stage::PenaltyForces, reg, warnings);
-            update_contact_anchors(ctx, reg, pool.get(), contact);
+            freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+            update_contact_anchors(ctx, reg, parallel, contact);
         });
-        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, reg, warnings); });
+        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, warnings); });
         run(Stage::IntegratePositions, [&] {
-            integrate_positions(ctx, reg, warnings);
-            freeze_non_finite(ctx, Stage::IntegratePositions, reg, warnings);
+            integrate_positions(ctx, parallel, reg, warnings);
+            freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, warnings);
         });
-        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(reg, contact.pairs); });
+        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
     }
     run(Stage::Events, [&] {
         clear_forces(reg);
@@ -177,6 +182,27 @@ int World::advance(double real_seconds)
     if (w.accumulator >= w.def.dt)
         w.accumulator = std::fmod(w.accumulator, w.def.dt);
     return steps;
+}
+
+Status World::set_settings(const WorldDef& def)
+{
+    Impl& w = *m_impl;
+    SM_ASSERT(!w.locked, "settings cannot change while the world steps");
+    if (w.locked)
+        return Error{"", "settings", "cannot change while the world steps"};
+    if (const Status s = validate(def); !s)
+        return s;
+    if (def.thread_count != w.def.thread_count)
+        return Error{"", "thread_count", "cannot change after creation"};
+    if (def.task_system != w.def.task_system)
+        return Error{"", "task_system", "cannot change after creation"};
+    if (def.modal_basis_cache != w.def.modal_basis_cache)
+        return Error{"", "modal_basis_cache", "cannot change after creation"};
+    if (def.dt != w.def.dt && w.step_count > 0)
+        return Error{"", "dt", "can change only before the first step (time is step_count * dt)"};
+    // The step reads the settings afresh each time, so changing them between steps is safe.
+    w.def = def;
+    return {};
 }
 
 double World::interpolation_alpha() const

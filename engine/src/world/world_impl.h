@@ -2,17 +2,14 @@
 #pragma once
 
 #include "constraints/constraint_world.h"
-#include "contact/contact_system.h"
-#include "core/thread_pool.h"
+#include "core/faults.h"
+#include "core/parallel.h"
 #include "supermodal/world.h"
 #include "world/components.h"
-#include "world/faults.h"
+#include "world/contact_system.h"
 
 namespace supermodal
 {
-
-/// Doubles per body in a Snapshot: pose (3 + 4), previous pose (3 + 4), velocities (3 + 3), forces (3 + 3).
-inline constexpr size_t k_values_per_body = 26;
 
 struct World::Impl {
     WorldDef def{};
@@ -28,11 +25,22 @@ struct World::Impl {
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     std::shared_ptr<ModalBasisCache> modal_bases; ///< Model: one basis per distinct modal def (maybe shared).
     std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
-    bool locked = false;              ///< True inside step(): mutations assert.
-    std::unique_ptr<ThreadPool> pool; ///< Per-pair loops when def.thread_count > 1; null otherwise.
+    bool locked = false;               ///< True inside step(): mutations assert.
+    std::shared_ptr<TaskSystem> tasks; ///< The host's task system, the built-in pool, or null (one thread).
+    Parallel parallel;                 ///< The step's loops over `tasks`.
 
     void step();
 };
+
+/// The engine's access to a world's insides (World::m_impl); hosts have only the public functions.
+[[nodiscard]] inline World::Impl& impl_of(World& world)
+{
+    return *world.m_impl;
+}
+[[nodiscard]] inline const World::Impl& impl_of(const World& world)
+{
+    return *world.m_impl;
+}
 
 /// Mass, inverse mass and inertia of a body from its shape and density (zero inverses unless dynamic).
 void set_mass_model(BodyModel& model, const ShapeDef& shape, double density);

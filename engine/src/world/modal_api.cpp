@@ -4,9 +4,9 @@
 #include "core/assert.h"
 #include "modal/accuracy.h"
 #include "modal/inverse_map.h"
-#include "modal/modal_world.h"
 #include "modal/stress.h"
 #include "supermodal/modal.h"
+#include "world/modal_system.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -19,7 +19,7 @@ namespace
 
 bool live(const World& world, Entity e)
 {
-    const World::Impl& w = world.impl();
+    const World::Impl& w = impl_of(world);
     const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
     SM_ASSERT(ok, "stale or null body handle");
     return ok;
@@ -27,9 +27,9 @@ bool live(const World& world, Entity e)
 
 const ModalBody* modal_of(const World& world, Entity e)
 {
-    if (!live(world, e) || !world.impl().reg.has<ModalBody>(e))
+    if (!live(world, e) || !impl_of(world).reg.has<ModalBody>(e))
         return nullptr;
-    return &world.impl().reg.get<ModalBody>(e);
+    return &impl_of(world).reg.get<ModalBody>(e);
 }
 
 } // namespace
@@ -40,7 +40,7 @@ Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const Bo
         return Error{"", "modal", "the body is rigid (modal.enabled is false)"};
     if (Status s = validate(def); !s)
         return s.error();
-    Result<modal::LatticeChoice> choice = find_or_build_modal_basis(world.impl(), def);
+    Result<modal::LatticeChoice> choice = find_or_build_modal_basis(impl_of(world), def);
     if (!choice)
         return choice.error();
     return choice->basis;
@@ -61,7 +61,7 @@ BodyModalState body_modal_state(const World& world, Entity e)
 Status set_body_modal_state(World& world, Entity e, std::span<const double> amplitudes,
                             std::span<const double> velocities)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
     if (w.locked)
         return Error{"", "modal", "bodies cannot change while the world steps"};
@@ -195,7 +195,7 @@ BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_po
     BodyPointTest out;
     if (!live(world, e) || !is_finite(world_point))
         return out;
-    const World::Impl& w = world.impl();
+    const World::Impl& w = impl_of(world);
     const Pose& p = w.reg.get<Pose>(e);
     const BodyModel& m = w.reg.get<BodyModel>(e);
     // The rest shape's collider (a modal body's own collider holds deformed samples, same shape).
@@ -230,7 +230,7 @@ Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
 {
     if (!live(world, e))
         return {};
-    const World::Impl& w = world.impl();
+    const World::Impl& w = impl_of(world);
     const Pose& p = w.reg.get<Pose>(e);
     const Vec3 com = w.reg.get<BodyModel>(e).mass.center_of_mass;
     Vec3 local = point_shape - com;

@@ -6,9 +6,9 @@
 // a light part between heavy ones cannot blow up; a few Gauss–Seidel passes over all constraints let
 // chains carry loads (a heavy part hanging below a light one) without the light part's mass limiting
 // the stiffness, as an explicit penalty spring would.
-#include "constraints/constraint_world.h"
-#include "constraints/side.h"
-#include "dynamics/integrate.h"
+#include "world/constraint_side.h"
+#include "world/constraint_system.h"
+#include "world/integrate.h"
 
 #include <algorithm>
 #include <cmath>

@@ -23,7 +23,7 @@ namespace supermodal
 {
 
 struct StepContext;
-class ThreadPool;
+class Parallel;
 
 /// Where one pair's points of this substep sit: part_points[part][begin, end).
 struct PairPoints {
@@ -35,7 +35,6 @@ struct ContactWorld {
     std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
     std::vector<PairManifold> manifolds;     ///< State: support-map pairs' points, sorted by key.
     std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
-    std::vector<uint8_t> deferred;           ///< Scratch: per pair, penalty runs serially (modal).
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].
@@ -46,12 +45,15 @@ struct ContactWorld {
     std::vector<PairPoints> pair_points;                ///< Derived: per pair, where its points are.
     std::vector<PairForce> pair_force;                  ///< Scratch: per pair, this substep's forces.
     std::vector<ContactInfo> contacts;                  ///< Derived: touching pairs of the last substep.
-    std::vector<uint8_t> has_twist;     ///< Scratch: per contact, the torsional spring is active.
-    std::vector<uint8_t> has_roll;      ///< Scratch: per contact, the rolling spring is active.
-    std::vector<Vec3> force, torque;    ///< Scratch: per entity index.
-    double max_penetration = 0.0;       ///< Derived: deepest point of the last substep [m].
-    std::vector<ZetaCache> zeta_caches; ///< Scratch: one per part.
-    ContactEvents events;               ///< Step events and the host's callback.
+    std::vector<uint8_t> has_twist;             ///< Scratch: per contact, the torsional spring is active.
+    std::vector<uint8_t> has_roll;              ///< Scratch: per contact, the rolling spring is active.
+    std::vector<Vec3> force, torque;            ///< Scratch: per entity index.
+    double max_penetration = 0.0;               ///< Derived: deepest point of the last substep [m].
+    std::vector<ZetaCache> zeta_caches;         ///< Scratch: one per part.
+    std::vector<std::vector<double>> modal_phi; ///< Scratch: one per part, φ at a point of a modal body.
+    /// Scratch: per part, parallel to part_points, each point's normal force [N] (pairs with modes only).
+    std::vector<std::vector<double>> part_point_force;
+    ContactEvents events; ///< Step events and the host's callback.
 
     /// The points of pair pi in this substep.
     [[nodiscard]] std::span<const ContactPoint> points_of(size_t pi) const
@@ -65,15 +67,14 @@ struct ContactWorld {
 /// no body moves more than ContactDef::speculative_speed_factor of a partner's thickness per substep.
 /// Also starts the step's event accumulators.
 [[nodiscard]] int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
-/// Narrowphase for this substep's poses; pool may be null (one thread).
-void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, ContactWorld& io_contact);
-/// Penalty normal and friction forces into velocities; updates the step's event accumulators. pool may be
-/// null (one thread).
-void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, ThreadPool* pool,
+/// Narrowphase for this substep's poses.
+void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io_contact);
+/// Penalty normal and friction forces into velocities; updates the step's event accumulators.
+void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, const Parallel& par,
                           ContactWorld& io_contact, StepWarnings& io_warnings);
 /// Moves the friction anchors of this substep's contacts by the relative motion the bodies will make,
 /// h·v'. Call after every velocity change of the substep (contact forces and constraint impulses).
-void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadPool* pool,
+void update_contact_anchors(const StepContext& ctx, const Registry& reg, const Parallel& par,
                             ContactWorld& io_contact);
 
 } // namespace supermodal

@@ -23,7 +23,7 @@ Entity parent_of(const ConstraintWorld& cw, Entity e)
 
 Status set_body_parent(World& world, Entity child, Entity parent)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     if (w.locked)
         return Error{"", "parent", "the hierarchy cannot change while the world steps"};
     if (!w.reg.valid(child) || (!parent.is_null() && !w.reg.valid(parent)))
@@ -40,14 +40,14 @@ Status set_body_parent(World& world, Entity child, Entity parent)
 Entity body_parent(const World& world, Entity body)
 {
     SM_ASSERT(world_valid(world, body), "stale or null body handle");
-    return parent_of(world.impl().constraints, body);
+    return parent_of(impl_of(world).constraints, body);
 }
 
 std::vector<Entity> body_children(const World& world, Entity body)
 {
     std::vector<Entity> out;
     for (Entity e : world_bodies(world))
-        if (parent_of(world.impl().constraints, e) == body)
+        if (parent_of(impl_of(world).constraints, e) == body)
             out.push_back(e);
     return out;
 }
@@ -58,7 +58,7 @@ std::vector<Entity> assembly_of(const World& world, Entity root)
     if (!world_valid(world, root))
         return out;
     for (Entity e : world_bodies(world))
-        for (Entity p = e; !p.is_null(); p = parent_of(world.impl().constraints, p))
+        for (Entity p = e; !p.is_null(); p = parent_of(impl_of(world).constraints, p))
             if (p == root) {
                 out.push_back(e);
                 break;
@@ -91,7 +91,7 @@ void move_assembly(World& world, Entity root, const Vec3& position, const Quat& 
 
 Status set_body_shape(World& world, Entity body, const ShapeDef& shape)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     if (w.locked)
         return Error{"", "shape", "a shape cannot change while the world steps"};
     if (!w.reg.valid(body))
@@ -112,7 +112,7 @@ Status set_body_shape(World& world, Entity body, const ShapeDef& shape)
     Pose& p = w.reg.get<Pose>(body);
     p.position = origin + rotate(p.orientation, m.mass.center_of_mass);
     p.prev_position = p.position;
-    refresh_anchors(w.constraints, w.reg, body);
+    refresh_anchors(w.constraints, body, w.reg.get<BodyModel>(body).shape);
     return {};
 }
 

@@ -145,6 +145,7 @@ template <class T> class SparseSet
         return m_data[m_sparse[e.index]];
     }
     [[nodiscard]] T* find(Entity e) { return contains(e) ? &m_data[m_sparse[e.index]] : nullptr; }
+    [[nodiscard]] const T* find(Entity e) const { return contains(e) ? &m_data[m_sparse[e.index]] : nullptr; }
 
     [[nodiscard]] std::size_t size() const { return m_dense.size(); }
     [[nodiscard]] const std::vector<Entity>& entities() const { return m_dense; }
@@ -192,6 +193,7 @@ template <class... Components> class BasicRegistry
     template <class T> [[nodiscard]] T& get(Entity e) { return store<T>().get(e); }
     template <class T> [[nodiscard]] const T& get(Entity e) const { return store<T>().get(e); }
     template <class T> [[nodiscard]] T* find(Entity e) { return store<T>().find(e); }
+    template <class T> [[nodiscard]] const T* find(Entity e) const { return store<T>().find(e); }
 
     template <class T> [[nodiscard]] SparseSet<T>& store() { return std::get<SparseSet<T>>(m_stores); }
     template <class T> [[nodiscard]] const SparseSet<T>& store() const
@@ -209,6 +211,19 @@ template <class... Components> class BasicRegistry
             const Entity e = (*driver)[i];
             if (store<First>().contains(e) && (store<Rest>().contains(e) && ...))
                 fn(e, store<First>().get(e), store<Rest>().get(e)...);
+        }
+    }
+
+    /// Calls fn(Entity, First&, Rest&...) for the entities at positions [begin, end) of First's store that
+    /// hold all listed components: a slice for one thread part (parts of one store never overlap).
+    template <class First, class... Rest, class Fn> void each_in(std::size_t begin, std::size_t end, Fn&& fn)
+    {
+        const std::vector<Entity>& dense = store<First>().entities();
+        std::vector<First>& values = store<First>().values();
+        for (std::size_t i = begin; i < end && i < dense.size(); ++i) {
+            const Entity e = dense[i];
+            if ((store<Rest>().contains(e) && ...))
+                fn(e, values[i], store<Rest>().get(e)...);
         }
     }
 

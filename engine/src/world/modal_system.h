@@ -16,6 +16,7 @@ namespace supermodal
 {
 
 struct StepContext;
+class Parallel;
 
 /// The basis definition a modal BodyDef asks for.
 [[nodiscard]] ModalBasisDef modal_basis_def(const BodyDef& def);
@@ -34,25 +35,29 @@ void set_active_modes(ModalBody& b, size_t active);
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
 /// The same into the host forces held for the next step (apply_force).
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
+/// Makes every modal body's sinc(ω_k h / 2) for substep h [s], before contact reads them in parallel.
+void prepare_modal_contact(Registry& reg, double h);
 /// What the modes add to a body's inverse mass at a world point for a push along unit world direction d
-/// held over a substep h [s]: Σ_k (φ_k(x_local) · Rᵀd)² · sinc²(ω_k h / 2) [1/kg] (for d = 0 the bound
-/// over directions, |φ_k|² in place of (φ_k · Rᵀd)²). The sinc² factor is how far mode k moves under a
-/// force held for h, relative to a free mass (1 for ω_k h → 0, 4/(ω_k h)² for a stiff mode, which only
-/// deflects statically). Contact springs are tuned on the inverse mass: without this a soft body's light
-/// surface makes the explicit contact coupling unstable (measured: a soft sphere bounced above its drop
-/// height). 0 for rigid bodies.
-[[nodiscard]] double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, const Vec3& d,
-                                        double h);
+/// held over the substep h [s] of the last prepare_modal_contact(): Σ_k (φ_k(x_local) · Rᵀd)² · sinc²(ω_k h /
+/// 2) [1/kg] (for d = 0 the bound over directions, |φ_k|² in place of (φ_k · Rᵀd)²). The sinc² factor is how
+/// far mode k moves under a force held for h, relative to a free mass (1 for ω_k h → 0, 4/(ω_k h)² for a
+/// stiff mode, which only deflects statically). Contact springs are tuned on the inverse mass: without this a
+/// soft body's light surface makes the explicit contact coupling unstable (measured: a soft sphere bounced
+/// above its drop height). 0 for rigid bodies. Reads only (any thread may call it, each with its own
+/// scratch_phi); the sinc² factors come from prepare_modal_contact().
+[[nodiscard]] double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point, const Vec3& d,
+                                        std::vector<double>& scratch_phi);
 /// An impulse J [N·s] at a world point changes the rates at once: q̇ += φ(x_local)ᵀ Rᵀ J.
 void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, const Vec3& impulse);
 
 /// ModalUpdate stage: steps every modal body's amplitudes over ctx.h under this substep's loads and the
 /// host loads, then clears the substep's loads.
-void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
+void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg,
+                         StepWarnings& io_warnings);
 /// UpdateSurfaces stage: moves the contact samples of the modal bodies in `pairs` (the only ones the
 /// narrowphase will read) by their current amplitudes, if these moved since. Others stay stale until they
 /// join a pair: call it again after the broadphase.
-void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs);
+void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs);
 /// Moves one modal body's samples (after creation, set_body_modal_state, restore).
 void update_modal_surface(ModalBody& body);
 /// Clears host generalized forces once a step has used them.

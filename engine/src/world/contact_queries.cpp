@@ -8,17 +8,17 @@ namespace supermodal
 
 std::span<const ContactInfo> world_contacts(const World& world)
 {
-    return world.impl().contact.contacts;
+    return impl_of(world).contact.contacts;
 }
 
 double world_max_penetration(const World& world)
 {
-    return world.impl().contact.max_penetration;
+    return impl_of(world).contact.max_penetration;
 }
 
 void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     SM_ASSERT(!w.locked, "world_set_contact_callback() called from inside a step");
     if (w.locked)
         return;
@@ -28,7 +28,7 @@ void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data
 
 std::span<const ContactEvent> world_contact_events(const World& world)
 {
-    return world.impl().contact.events.events;
+    return impl_of(world).contact.events.events;
 }
 
 } // namespace supermodal

@@ -3,36 +3,34 @@
 // torque kick followed by the torque-free flow solved by the implicit midpoint rule (see rotation.h).
 #pragma once
 
+#include "core/parallel.h"
+#include "dynamics/step_context.h"
 #include "supermodal/math.h"
 #include "supermodal/world.h"
 #include "world/components.h"
-#include "world/faults.h"
 
 namespace supermodal
 {
 
-/// What every stage of one substep needs to know.
-struct StepContext {
-    double h = 0.0; ///< Substep length [s].
-    Vec3 gravity{}; ///< [m/s²], world.
-    int substep_count = 1;
-    FaultLog* faults = nullptr; ///< Where the guards report NaN/Inf, or null.
-};
-
 [[nodiscard]] StepContext make_step_context(const WorldDef& def);
 
 /// Gravity and host forces into linear velocity; host torques into angular momentum (dynamic bodies).
-void integrate_forces(const StepContext& ctx, Registry& reg);
+void integrate_forces(const StepContext& ctx, const Parallel& par, Registry& reg);
 /// Velocities into poses; the gyroscopic term is solved implicitly. Kinematic bodies follow their
 /// velocities; static bodies never move.
-void integrate_positions(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings);
+void integrate_positions(const StepContext& ctx, const Parallel& par, Registry& reg,
+                         StepWarnings& io_warnings);
 /// Remembers each pose at the start of a step: render interpolation blends from it, and the
 /// non-finite guard falls back to it.
-void store_previous_poses(Registry& reg);
+void store_previous_poses(const Parallel& par, Registry& reg);
 /// Freezes bodies whose state is no longer finite (zero velocity, last finite pose, kinematic), so a
 /// fault never spreads; counts each in io_warnings and logs it (as found after `stage`) when ctx has a log.
-void freeze_non_finite(const StepContext& ctx, Stage stage, Registry& reg, StepWarnings& io_warnings);
+void freeze_non_finite(const StepContext& ctx, Stage stage, const Parallel& par, Registry& reg,
+                       StepWarnings& io_warnings);
 /// Clears host forces once a step has used them.
 void clear_forces(Registry& reg);
+
+/// Fewest bodies worth a thread part in the per-body stages: below this, waking a worker costs more.
+inline constexpr size_t k_min_bodies_per_part = 128;
 
 } // namespace supermodal

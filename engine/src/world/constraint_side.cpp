@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "constraints/side.h"
+#include "world/constraint_side.h"
 
 #include "constraints/constraint_world.h"
-#include "dynamics/integrate.h"
+#include "world/integrate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +57,7 @@ Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     s.point = world_point(*s.m, *s.p, local);
     // A modal body's anchor rides on the deformed material (a surface anchor stays on the deformed
     // surface, as the contact samples do).
-    if (modal_anchor(bodies, e, local, h, with_rotation, s.modal))
+    if (modal_anchor(bodies.find<ModalBody>(e), s.p->orientation, local, h, with_rotation, s.modal))
         s.point += s.modal.displacement;
     s.r = s.point - s.p->position;
     if (s.m->motion == MotionType::Dynamic) {

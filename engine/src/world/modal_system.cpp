@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "modal/modal_world.h"
+#include "world/modal_system.h"
 
-#include "dynamics/integrate.h"
+#include "core/assert.h"
 #include "modal/accuracy.h"
 #include "modal/adaptive.h"
 #include "modal/stress.h"
+#include "world/integrate.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -212,9 +213,22 @@ void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const
     }
 }
 
-double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, const Vec3& d, double h)
+void prepare_modal_contact(Registry& reg, double h)
 {
-    ModalBody* b = reg.find<ModalBody>(e);
+    reg.each<ModalBody>([&](Entity, ModalBody& b) {
+        if (b.contact_h == h)
+            return;
+        b.contact_sinc.resize(b.omega.size());
+        for (size_t k = 0; k < b.omega.size(); ++k)
+            b.contact_sinc[k] = modal::half_step_sinc(b.omega[k], h);
+        b.contact_h = h;
+    });
+}
+
+double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point, const Vec3& d,
+                          std::vector<double>& scratch_phi)
+{
+    const ModalBody* b = reg.find<ModalBody>(e);
     if (b == nullptr)
         return 0.0;
     const Pose& p = reg.get<Pose>(e);
@@ -226,15 +240,10 @@ double modal_inverse_mass(Registry& reg, Entity e, const Vec3& world_point, cons
     const ModalBasis& basis = *b->basis;
     const size_t r = static_cast<size_t>(basis.mode_count);
     const LatticeWeights lw = modal_weights(basis, local);
-    if (b->contact_h != h) { // per substep length, not per point: the pairs with modal bodies run serially
-        b->contact_sinc.resize(r);
-        for (size_t k = 0; k < r; ++k)
-            b->contact_sinc[k] = modal::half_step_sinc(b->omega[k], h);
-        b->contact_h = h;
-    }
+    SM_ASSERT(b->contact_sinc.size() == r, "prepare_modal_contact() runs before the contact forces");
     // φ_k at the point for every k, nodes outer (rows of mode_shapes are contiguous): per k the same sum
     // in the same order as node by node.
-    std::vector<double>& phi = b->contact_phi; // per body: a full body has more than k_max_modes
+    std::vector<double>& phi = scratch_phi; // per thread: a full body has more than k_max_modes
     phi.assign(3 * r, 0.0);
     for (int j = 0; j < lw.count; ++j) {
         const double* node = &basis.mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
@@ -259,102 +268,130 @@ void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, c
         add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, impulse, b->q_dot);
 }
 
-void update_modal_bodies(const StepContext& ctx, Registry& reg, StepWarnings& io_warnings)
+namespace
 {
-    const double h = ctx.h;
-    reg.each<ModalBody>([&](Entity e, ModalBody& b) {
-        const size_t r = b.q.size();
-        if (b.step_h != h) {
-            b.exact_steps.resize(r);
-            for (size_t k = 0; k < r; ++k)
-                b.exact_steps[k] = modal::exact_mode_step(b.omega[k], b.damping_ratio, h);
-            b.step_h = h;
-        }
-        // The last substep's nodal loads stay for the accuracy report: swap instead of clearing.
-        if (b.last_has_load)
-            std::fill(b.last_nodal_load.begin(), b.last_nodal_load.end(), 0.0);
-        b.last_has_load = b.has_nodal_load || b.has_host_nodal_load;
-        // Contact loads apart from the held ones (constraints, host): they are stepped as a kick.
-        b.contact_load.assign(r, 0.0);
-        if (b.has_nodal_load) {
-            // Q = Φᵀ f over the nodes that carry load.
-            const double* phi = b.basis->mode_shapes.data();
-            for (size_t i = 0; i < b.nodal_load.size(); ++i, phi += r) {
-                const double f = b.nodal_load[i];
-                if (f == 0.0)
-                    continue;
-                for (size_t k = 0; k < r; ++k)
-                    b.contact_load[k] += phi[k] * f;
-            }
-            std::swap(b.nodal_load, b.last_nodal_load); // last_nodal_load was zero, so nodal_load is now
-            b.has_nodal_load = false;
-        }
-        if (b.has_host_nodal_load)
-            for (size_t i = 0; i < b.last_nodal_load.size(); ++i)
-                b.last_nodal_load[i] += b.host_nodal_load[i];
+
+constexpr uint8_t k_switched = 1;   // central difference was unstable for some modes, stepped exactly
+constexpr uint8_t k_non_finite = 2; // amplitudes turned NaN/Inf: reset to rest
+
+// One modal body's amplitudes over h [s] under this substep's loads; returns k_switched / k_non_finite.
+uint8_t step_modal_body(double h, ModalBody& b)
+{
+    uint8_t flags = 0;
+    const size_t r = b.q.size();
+    if (b.step_h != h) {
+        b.exact_steps.resize(r);
         for (size_t k = 0; k < r; ++k)
-            b.last_load[k] = (b.load[k] + b.contact_load[k]) + b.host_force[k];
-        if (b.adaptive_tolerance > 0.0) {
-            const modal::ActiveChoice choice = modal::choose_active_modes(b, b.last_load);
-            if (choice.active != b.active)
-                set_active_modes(b, choice.active);
-            b.truncation = choice.truncation;
-            b.max_truncation = std::max(b.max_truncation, choice.truncation);
-            b.max_lattice_error = std::max(b.max_lattice_error, choice.lattice_error);
-            b.active_mode_substeps += static_cast<double>(b.active);
+            b.exact_steps[k] = modal::exact_mode_step(b.omega[k], b.damping_ratio, h);
+        b.step_h = h;
+    }
+    // The last substep's nodal loads stay for the accuracy report: swap instead of clearing.
+    if (b.last_has_load)
+        std::fill(b.last_nodal_load.begin(), b.last_nodal_load.end(), 0.0);
+    b.last_has_load = b.has_nodal_load || b.has_host_nodal_load;
+    // Contact loads apart from the held ones (constraints, host): they are stepped as a kick.
+    b.contact_load.assign(r, 0.0);
+    if (b.has_nodal_load) {
+        // Q = Φᵀ f over the nodes that carry load.
+        const double* phi = b.basis->mode_shapes.data();
+        for (size_t i = 0; i < b.nodal_load.size(); ++i, phi += r) {
+            const double f = b.nodal_load[i];
+            if (f == 0.0)
+                continue;
+            for (size_t k = 0; k < r; ++k)
+                b.contact_load[k] += phi[k] * f;
         }
-        // Every mode steps, active or not: an inactive one is only hidden from the surface, so it joins
-        // with the motion its loads gave it instead of missing the start of a strike.
-        bool switched = false;
-        for (size_t k = 0; k < r; ++k) {
-            const double force = b.last_load[k];
-            // The modes spring back to the (plastically moved) rest shape: step the elastic part q − q_p.
-            // For an elastic body q_p = 0 and this is q itself, bit for bit.
-            double elastic = b.q[k] - b.q_plastic[k];
-            if (b.integrator == ModalIntegrator::CentralDifference) {
-                if (b.omega[k] * h < modal::k_central_difference_limit) {
-                    modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic,
-                                                   b.q_dot[k]);
-                    b.q[k] = elastic + b.q_plastic[k];
-                    continue;
-                }
-                switched = true;
+        std::swap(b.nodal_load, b.last_nodal_load); // last_nodal_load was zero, so nodal_load is now
+        b.has_nodal_load = false;
+    }
+    if (b.has_host_nodal_load)
+        for (size_t i = 0; i < b.last_nodal_load.size(); ++i)
+            b.last_nodal_load[i] += b.host_nodal_load[i];
+    for (size_t k = 0; k < r; ++k)
+        b.last_load[k] = (b.load[k] + b.contact_load[k]) + b.host_force[k];
+    if (b.adaptive_tolerance > 0.0) {
+        const modal::ActiveChoice choice = modal::choose_active_modes(b, b.last_load);
+        if (choice.active != b.active)
+            set_active_modes(b, choice.active);
+        b.truncation = choice.truncation;
+        b.max_truncation = std::max(b.max_truncation, choice.truncation);
+        b.max_lattice_error = std::max(b.max_lattice_error, choice.lattice_error);
+        b.active_mode_substeps += static_cast<double>(b.active);
+    }
+    // Every mode steps, active or not: an inactive one is only hidden from the surface, so it joins
+    // with the motion its loads gave it instead of missing the start of a strike.
+    bool switched = false;
+    for (size_t k = 0; k < r; ++k) {
+        const double force = b.last_load[k];
+        // The modes spring back to the (plastically moved) rest shape: step the elastic part q − q_p.
+        // For an elastic body q_p = 0 and this is q itself, bit for bit.
+        double elastic = b.q[k] - b.q_plastic[k];
+        if (b.integrator == ModalIntegrator::CentralDifference) {
+            if (b.omega[k] * h < modal::k_central_difference_limit) {
+                modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic, b.q_dot[k]);
+                b.q[k] = elastic + b.q_plastic[k];
+                continue;
             }
-            // The exact map holds its force over h, which against a contact spring (Q = −κq) is not
-            // symplectic: det = 1 + κ(1 − cos ωh)/ω² > 1, which pumped a soft body bouncing at small
-            // ωh (docs/stability.md). So below ωh = 2 the contact part is a kick, q̇ += λhQ_c, then the
-            // exact flow under the held loads (constraints: their anchors are tuned on the held map;
-            // host forces: piecewise constant by contract): symplectic, and with contact taken at q_n
-            // the same trajectory as half-kick / flow / half-kick. Stiffer modes keep the held map,
-            // whose quasi-static response a kick would overshoot (docs/modal.md "Integrators").
-            double held = force;
-            if (b.contact_load[k] != 0.0) {
-                const double gain = modal::contact_kick_gain(b.omega[k], h);
-                if (gain > 0.0) {
-                    b.q_dot[k] += gain * h * b.contact_load[k];
-                    held = b.load[k] + b.host_force[k];
-                }
-            }
-            modal::apply_mode_step(b.exact_steps[k], held, elastic, b.q_dot[k]);
-            b.q[k] = elastic + b.q_plastic[k];
+            switched = true;
         }
-        if (switched)
+        // The exact map holds its force over h, which against a contact spring (Q = −κq) is not
+        // symplectic: det = 1 + κ(1 − cos ωh)/ω² > 1, which pumped a soft body bouncing at small
+        // ωh (docs/stability.md). So below ωh = 2 the contact part is a kick, q̇ += λhQ_c, then the
+        // exact flow under the held loads (constraints: their anchors are tuned on the held map;
+        // host forces: piecewise constant by contract): symplectic, and with contact taken at q_n
+        // the same trajectory as half-kick / flow / half-kick. Stiffer modes keep the held map,
+        // whose quasi-static response a kick would overshoot (docs/modal.md "Integrators").
+        double held = force;
+        if (b.contact_load[k] != 0.0) {
+            const double gain = modal::contact_kick_gain(b.omega[k], h);
+            if (gain > 0.0) {
+                b.q_dot[k] += gain * h * b.contact_load[k];
+                held = b.load[k] + b.host_force[k];
+            }
+        }
+        modal::apply_mode_step(b.exact_steps[k], held, elastic, b.q_dot[k]);
+        b.q[k] = elastic + b.q_plastic[k];
+    }
+    if (switched)
+        flags |= k_switched;
+    if (b.plastic.plastic())
+        modal::relieve_plastic(*b.surface->stress, b.plastic, b.basis->young, b.q, b.q_plastic,
+                               b.plastic_strain);
+    if (!all_finite(b.q) || !all_finite(b.q_dot) || !all_finite(b.q_plastic)) {
+        // A fault stays in this body's deformation: back to the rest shape.
+        std::fill(b.q.begin(), b.q.end(), 0.0);
+        std::fill(b.q_dot.begin(), b.q_dot.end(), 0.0);
+        std::fill(b.q_plastic.begin(), b.q_plastic.end(), 0.0);
+        flags |= k_non_finite;
+    }
+    std::fill(b.load.begin(), b.load.end(), 0.0);
+    b.surface_stale = true;
+    return flags;
+}
+
+} // namespace
+
+void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg,
+                         StepWarnings& io_warnings)
+{
+    // Each body on any thread writes only its own amplitudes and a flag byte; the counts and the fault
+    // log follow on this thread in store order, so neither depends on threads.
+    std::vector<ModalBody>& bodies = reg.store<ModalBody>().values();
+    std::vector<uint8_t> flags(bodies.size(), 0);
+    par.for_parts(bodies.size(), 1, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            flags[i] = step_modal_body(ctx.h, bodies[i]);
+    });
+    const std::vector<Entity>& entities = reg.store<ModalBody>().entities();
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        if ((flags[i] & k_switched) != 0)
             ++io_warnings.modal_integrator_switches;
-        if (b.plastic.plastic())
-            modal::relieve_plastic(*b.surface->stress, b.plastic, b.basis->young, b.q, b.q_plastic,
-                                   b.plastic_strain);
-        if (!all_finite(b.q) || !all_finite(b.q_dot) || !all_finite(b.q_plastic)) {
-            // A fault stays in this body's deformation: back to the rest shape.
-            std::fill(b.q.begin(), b.q.end(), 0.0);
-            std::fill(b.q_dot.begin(), b.q_dot.end(), 0.0);
-            std::fill(b.q_plastic.begin(), b.q_plastic.end(), 0.0);
+        if ((flags[i] & k_non_finite) != 0) {
             ++io_warnings.modal_non_finite;
             if (ctx.faults != nullptr)
-                ctx.faults->record(FaultKind::ModalNonFinite, e, Stage::ModalUpdate);
+                ctx.faults->record(FaultKind::ModalNonFinite, entities[i], Stage::ModalUpdate);
         }
-        std::fill(b.load.begin(), b.load.end(), 0.0);
-        b.surface_stale = true;
-    });
+    }
 }
 
 void update_modal_surface(ModalBody& b)
@@ -390,14 +427,22 @@ void update_modal_surface(ModalBody& b)
     b.surface_stale = false;
 }
 
-void update_modal_surfaces(Registry& reg, std::span<const BodyPair> pairs)
+void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs)
 {
     if (reg.store<ModalBody>().size() == 0)
         return;
+    // Each stale body once (a body is in several pairs), then each on any thread: it writes only itself.
+    std::vector<ModalBody*> stale;
     for (const BodyPair& pair : pairs)
         for (Entity e : {pair.a, pair.b})
-            if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->surface_stale)
-                update_modal_surface(*b);
+            if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->surface_stale) {
+                b->surface_stale = false;
+                stale.push_back(b);
+            }
+    par.for_parts(stale.size(), 1, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            update_modal_surface(*stale[i]);
+    });
 }
 
 void clear_modal_forces(Registry& reg)

@@ -22,14 +22,14 @@ bool finite_anchor(const AnchorDef& anchor)
 
 const ConstraintModel* model_of(const World& world, Constraint c)
 {
-    const ConstraintWorld& cw = world.impl().constraints;
+    const ConstraintWorld& cw = impl_of(world).constraints;
     SM_ASSERT(cw.reg.valid(to_entity(c)), "stale or null constraint handle");
     return cw.reg.valid(to_entity(c)) ? &cw.reg.get<ConstraintModel>(to_entity(c)) : nullptr;
 }
 
 const ConstraintState* state_of(const World& world, Constraint c)
 {
-    const ConstraintWorld& cw = world.impl().constraints;
+    const ConstraintWorld& cw = impl_of(world).constraints;
     SM_ASSERT(cw.reg.valid(to_entity(c)), "stale or null constraint handle");
     return cw.reg.valid(to_entity(c)) ? &cw.reg.get<ConstraintState>(to_entity(c)) : nullptr;
 }
@@ -69,7 +69,7 @@ Status validate(const ConstraintDef& def)
 
 Constraint create_constraint(World& world, const ConstraintDef& def)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     const Status status = validate(def);
     SM_ASSERT(status.ok(), "invalid ConstraintDef");
     SM_ASSERT(!w.locked, "constraints cannot be created while the world steps");
@@ -108,7 +108,7 @@ Constraint create_constraint(World& world, const ConstraintDef& def)
 
 void destroy_constraint(World& world, Constraint constraint)
 {
-    World::Impl& w = world.impl();
+    World::Impl& w = impl_of(world);
     SM_ASSERT(!w.locked, "constraints cannot be destroyed while the world steps");
     if (!w.locked)
         w.constraints.reg.destroy(to_entity(constraint));
@@ -116,13 +116,13 @@ void destroy_constraint(World& world, Constraint constraint)
 
 bool world_valid(const World& world, Constraint constraint)
 {
-    return world.impl().constraints.reg.valid(to_entity(constraint));
+    return impl_of(world).constraints.reg.valid(to_entity(constraint));
 }
 
 std::vector<Constraint> world_constraints(const World& world)
 {
     std::vector<Constraint> out;
-    for (Entity e : world.impl().constraints.reg.store<ConstraintModel>().entities())
+    for (Entity e : impl_of(world).constraints.reg.store<ConstraintModel>().entities())
         out.push_back(to_constraint(e));
     std::sort(out.begin(), out.end(), [](Constraint x, Constraint y) { return x.index < y.index; });
     return out;
@@ -175,12 +175,12 @@ std::pair<Vec3, Vec3> constraint_anchors(const World& world, Constraint constrai
 
 double world_max_constraint_error(const World& world)
 {
-    return world.impl().constraints.max_error;
+    return impl_of(world).constraints.max_error;
 }
 
 uint64_t world_broken_constraints(const World& world)
 {
-    return world.impl().constraints.broken_count;
+    return impl_of(world).constraints.broken_count;
 }
 
 } // namespace supermodal

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "contact/contact_system.h"
+#include "world/contact_system.h"
 
-#include "core/thread_pool.h"
-#include "dynamics/integrate.h"
-#include "modal/modal_world.h"
+#include "core/parallel.h"
+#include "world/integrate.h"
+#include "world/modal_system.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,21 +40,12 @@ PairAnchor* find_anchor(std::vector<PairAnchor>& anchors, uint64_t key)
     return it != anchors.end() && it->key == key ? &*it : nullptr;
 }
 
-// fn(part, begin, end) over [0, count): on the pool's static partition, or all at once without one.
-template <class Fn> void for_parts(ThreadPool* pool, size_t count, Fn&& fn)
+// fn(part, begin, end) over [0, count) on the static partition (contact/penalty.h: per-pair slots).
+template <class Fn> void for_parts(const Parallel& par, size_t count, Fn&& fn)
 {
-    if (pool != nullptr)
-        pool->parallel_for(count, k_min_pairs_per_part, fn, k_pairs_per_block);
-    else if (count > 0)
-        fn(size_t{0}, size_t{0}, count);
+    par.for_parts(count, k_min_pairs_per_part, fn, k_pairs_per_block);
 }
 
-size_t part_capacity(const ThreadPool* pool)
-{
-    return pool != nullptr ? static_cast<size_t>(pool->thread_count()) : 1;
-}
-
-// True when the box lies wholly on the outer side of the plane n·x = offset (n unit or not).
 bool box_above_plane(const Aabb& box, const ShapeDef& plane)
 {
     const Vec3 n = normalized(plane.plane_normal);
@@ -191,18 +182,18 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     return static_cast<int>(std::ceil(needed));
 }
 
-void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, ContactWorld& io)
+void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io)
 {
     std::vector<PairManifold> old_manifolds;
     old_manifolds.swap(io.manifolds);
     io.pair_manifold.resize(io.pairs.size());
-    io.part_points.resize(part_capacity(pool));
+    io.part_points.resize(par.part_capacity());
     for (std::vector<ContactPoint>& points : io.part_points)
         points.clear();
     io.pair_points.resize(io.pairs.size());
     // World boxes once per body, not once per pair it is in (three support-map calls each).
     io.boxes.resize(reg.pool().slot_count());
-    for_parts(pool, io.proxies.size(), [&](size_t, size_t begin, size_t end) {
+    for_parts(par, io.proxies.size(), [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const Entity e = io.proxies[i].entity;
             const BodyModel& m = reg.get<BodyModel>(e);
@@ -210,7 +201,7 @@ void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, C
                 io.boxes[e.index] = body_box(m, reg.get<Pose>(e));
         }
     });
-    for_parts(pool, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
+    for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
         std::vector<ContactPoint>& points = io.part_points[part];
         for (size_t pi = begin; pi < end; ++pi) {
             const auto first = static_cast<uint32_t>(points.size());
@@ -225,7 +216,69 @@ void collide_pairs(const WorldDef& def, const Registry& reg, ThreadPool* pool, C
             io.manifolds.push_back(m);
 }
 
-void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, ThreadPool* pool,
+namespace
+{
+
+// The modes as the contact springs feel them: one reader per thread part, with its own φ scratch.
+struct ModalReader {
+    const Registry* reg = nullptr;
+    std::vector<double>* phi = nullptr;
+
+    static double inverse_mass(void* ctx, Entity body, const Vec3& x, const Vec3& d)
+    {
+        const auto* r = static_cast<const ModalReader*>(ctx);
+        return modal_inverse_mass(*r->reg, body, x, d, *r->phi);
+    }
+};
+
+[[nodiscard]] bool has_modes(const Registry& reg, const BodyPair& pair)
+{
+    return reg.has<ModalBody>(pair.a) || reg.has<ModalBody>(pair.b);
+}
+
+// The penalty forces of pair pi; a pair with a modal body also writes its points' normal forces.
+PairForce pair_penalty(const PenaltyParams& params, const Registry& reg, ContactWorld& io, size_t pi,
+                       ZetaCache& io_zeta, const PairModes& modes)
+{
+    const std::span<const ContactPoint> points = io.points_of(pi);
+    if (points.empty())
+        return PairForce{};
+    const BodyPair& pair = io.pairs[pi];
+    auto side = [&](Entity e) {
+        return PenaltyBody{&reg.get<BodyModel>(e), &reg.get<Pose>(e), &reg.get<Velocity>(e)};
+    };
+    const PairAnchor* old_anchor = find_anchor(io.anchors, pair.key());
+    if (!has_modes(reg, pair))
+        return penalty_pair(params, pair, side(pair.a), side(pair.b), points, old_anchor, io_zeta);
+    const PairPoints& r = io.pair_points[pi];
+    const std::span<double> point_force{io.part_point_force[r.part].data() + r.begin, points.size()};
+    return penalty_pair(params, pair, side(pair.a), side(pair.b), points, old_anchor, io_zeta, &modes,
+                        point_force);
+}
+
+// A touching pair's loads on its modal bodies (a no-op for rigid ones): each point's normal force, then
+// the friction force at the centroid. Serial, in pair order, so the sums do not depend on threads.
+void load_modes(Registry& reg, const ContactWorld& io, size_t pi)
+{
+    const BodyPair& pair = io.pairs[pi];
+    if (!has_modes(reg, pair))
+        return;
+    const std::span<const ContactPoint> points = io.points_of(pi);
+    const PairPoints& r = io.pair_points[pi];
+    const double* force = io.part_point_force[r.part].data() + r.begin;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 fv = force[i] * points[i].normal;
+        modal_add_point_load(reg, pair.a, points[i].point, fv);
+        modal_add_point_load(reg, pair.b, points[i].point, -1.0 * fv);
+    }
+    const PairForce& pf = io.pair_force[pi];
+    modal_add_point_load(reg, pair.a, pf.info.point, pf.friction_force);
+    modal_add_point_load(reg, pair.b, pf.info.point, -1.0 * pf.friction_force);
+}
+
+} // namespace
+
+void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, const Parallel& par,
                           ContactWorld& io, StepWarnings& io_warnings)
 {
     const size_t slots = reg.pool().slot_count();
@@ -247,42 +300,28 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
                                .damping_ratio = def.contact.damping_ratio,
                                .h = ctx.h};
 
-    // Per pair, on any thread: reads bodies and old anchors, writes only the pair's slot.
+    // Per pair, on any thread: reads bodies and old anchors, writes only the pair's slot (and, for a pair
+    // with a modal body, its points' normal forces, which load the modes below).
     io.pair_force.resize(io.pairs.size());
-    io.deferred.assign(io.pairs.size(), 0);
-    io.zeta_caches.resize(part_capacity(pool));
+    io.zeta_caches.resize(par.part_capacity());
+    io.modal_phi.resize(par.part_capacity());
+    io.part_point_force.resize(io.part_points.size());
+    for (size_t part = 0; part < io.part_points.size(); ++part)
+        io.part_point_force[part].resize(io.part_points[part].size());
+    prepare_modal_contact(reg, ctx.h);
     const Registry& creg = reg;
-    auto side = [&](Entity e) {
-        return PenaltyBody{&creg.get<BodyModel>(e), &creg.get<Pose>(e), &creg.get<Velocity>(e)};
-    };
-    for_parts(pool, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
-        for (size_t pi = begin; pi < end; ++pi) {
-            const std::span<const ContactPoint> points = io.points_of(pi);
-            if (points.empty()) {
-                io.pair_force[pi].touching = false;
-                continue;
-            }
-            const BodyPair& pair = io.pairs[pi];
-            // A modal body takes its point loads into its modes: those pairs run serially below.
-            if (creg.has<ModalBody>(pair.a) || creg.has<ModalBody>(pair.b)) {
-                io.deferred[pi] = 1;
-                io.pair_force[pi].touching = false;
-                continue;
-            }
-            io.pair_force[pi] = penalty_pair(params, pair, side(pair.a), side(pair.b), points,
-                                             find_anchor(io.anchors, pair.key()), io.zeta_caches[part]);
-        }
+    for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
+        ModalReader reader{&creg, &io.modal_phi[part]};
+        const PairModes modes{.inverse_mass = &ModalReader::inverse_mass, .ctx = &reader};
+        for (size_t pi = begin; pi < end; ++pi)
+            io.pair_force[pi] = pair_penalty(params, creg, io, pi, io.zeta_caches[part], modes);
     });
 
-    // In pair order, on one thread: sums per body, new anchors (sorted, as the pairs are), events.
+    // In pair order, on one thread: sums per body, modal loads, new anchors (sorted, as the pairs are),
+    // events.
     std::vector<PairAnchor> anchors;
     anchors.reserve(io.anchors.size());
     for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
-        if (io.deferred[pi] != 0) {
-            const BodyPair& pair = io.pairs[pi];
-            io.pair_force[pi] = penalty_pair(params, pair, side(pair.a), side(pair.b), io.points_of(pi),
-                                             find_anchor(io.anchors, pair.key()), io.zeta_caches[0], &reg);
-        }
         const PairForce& pf = io.pair_force[pi];
         if (!pf.touching)
             continue;
@@ -291,6 +330,7 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         io.torque[a] += pf.torque_a;
         io.force[b] -= pf.force_a;
         io.torque[b] += pf.torque_b;
+        load_modes(reg, io, pi);
         anchors.push_back(pf.anchor);
         if (pf.stiffness_clamped)
             ++io_warnings.contact_frequency_clamps;
@@ -313,7 +353,8 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
     });
 }
 
-void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadPool* pool, ContactWorld& io)
+void update_contact_anchors(const StepContext& ctx, const Registry& reg, const Parallel& par,
+                            ContactWorld& io)
 {
     // The anchors follow the displacement the bodies actually make this substep, x' − x = h·v', with
     // v' the velocity after every force of the substep: with the velocity from before the contact forces
@@ -323,7 +364,7 @@ void update_contact_anchors(const StepContext& ctx, const Registry& reg, ThreadP
     // spring the same way (measured: the chair sample's dummy crept forward off the seat at 1 cm/s, its
     // thighs and the chair jittering at 2–6 cm/s). Each contact writes only its own anchor.
     const Registry& creg = reg;
-    for_parts(pool, io.contacts.size(), [&](size_t, size_t begin, size_t end) {
+    for_parts(par, io.contacts.size(), [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const ContactInfo& ci = io.contacts[i];
             PairAnchor& anchor = io.anchors[i];

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+// The dynamic state of a world, listed once. visit_state() walks every field in one fixed order (entity
+// index order, so component-store history cannot matter) and hands each to a visitor, tagged Hashed
+// (where bodies are and how they move) or Saved (also needed to continue bit for bit: previous pose,
+// pending host forces, counts). The hash, the snapshot writer and the restore reader are three visitors
+// of this one list, so a new state field is added in one place and all three follow.
+//
+// A visitor provides: real(double&, Field), integer(T&, Field), flag(bool&, Field), check(bool, what)
+// (false stops a reader with that error) and sequence(container, Field) (a length; a reader resizes).
+#pragma once
+
+#include "world/world_impl.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace supermodal
+{
+
+enum class Field : uint8_t {
+    Hashed, ///< In the state hash and in snapshots.
+    Saved,  ///< In snapshots only.
+};
+
+/// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
+inline constexpr uint32_t k_snapshot_layout_version = 2;
+
+[[nodiscard]] inline uint64_t entity_key(Entity e)
+{
+    return (uint64_t{e.index} << 32) | e.generation;
+}
+
+template <class V, class T> void visit_vec3(V& v, T& x, Field f)
+{
+    v.real(x.x, f);
+    v.real(x.y, f);
+    v.real(x.z, f);
+}
+
+template <class V, class T> void visit_quat(V& v, T& q, Field f)
+{
+    v.real(q.w, f);
+    v.real(q.x, f);
+    v.real(q.y, f);
+    v.real(q.z, f);
+}
+
+/// A list of handles that must match the world's own (creation and destruction are not state), each
+/// followed by what fields(e) visits.
+template <class V, class Fields>
+void visit_each(V& v, const std::vector<Entity>& live, const char* mismatch, Fields&& fields)
+{
+    uint64_t count = live.size();
+    v.integer(count, Field::Saved);
+    if (!v.check(count == live.size(), mismatch))
+        return;
+    for (Entity e : live) {
+        uint64_t key = entity_key(e);
+        v.integer(key, Field::Hashed);
+        if (!v.check(key == entity_key(e), mismatch))
+            return;
+        fields(e);
+    }
+}
+
+template <class V, class M> void visit_modal(V& v, M& b)
+{
+    const size_t r = b.q.size();
+    uint64_t modes = r;
+    v.integer(modes, Field::Saved);
+    if (!v.check(modes == r, "corrupt snapshot: a modal body's mode count differs"))
+        return;
+    for (size_t k = 0; k < r; ++k) {
+        v.real(b.q[k], Field::Hashed);
+        v.real(b.q_dot[k], Field::Hashed);
+    }
+    for (size_t k = 0; k < r; ++k)
+        v.real(b.host_force[k], Field::Saved);
+    // Elastic bodies keep the hash they had before plasticity existed; bodies that step every mode, the
+    // one from before adaptive modes.
+    const Field plastic = b.plastic.plastic() ? Field::Hashed : Field::Saved;
+    for (size_t k = 0; k < r; ++k)
+        v.real(b.q_plastic[k], plastic);
+    v.real(b.plastic_strain, plastic);
+    v.integer(b.active, b.adaptive_tolerance > 0.0 ? Field::Hashed : Field::Saved);
+    v.check(b.active <= r, "corrupt snapshot: an active mode count is out of range");
+}
+
+template <class V, class W> void visit_bodies(V& v, W& w)
+{
+    std::vector<Entity> live;
+    w.reg.pool().for_each_alive([&](Entity e) {
+        if (w.reg.template has<Pose>(e))
+            live.push_back(e);
+    });
+    visit_each(v, live, "bodies were created or destroyed since this snapshot was taken", [&](Entity e) {
+        auto& p = w.reg.template get<Pose>(e);
+        auto& vel = w.reg.template get<Velocity>(e);
+        auto& force = w.reg.template get<ForceAccumulator>(e);
+        visit_vec3(v, p.position, Field::Hashed);
+        visit_quat(v, p.orientation, Field::Hashed);
+        visit_vec3(v, p.prev_position, Field::Saved);
+        visit_quat(v, p.prev_orientation, Field::Saved);
+        visit_vec3(v, vel.linear, Field::Hashed);
+        visit_vec3(v, vel.angular, Field::Hashed);
+        visit_vec3(v, force.force, Field::Saved);
+        visit_vec3(v, force.torque, Field::Saved);
+        if (auto* b = w.reg.template find<ModalBody>(e))
+            visit_modal(v, *b);
+    });
+}
+
+template <class V, class W> void visit_contacts(V& v, W& w)
+{
+    for (auto& a : v.sequence(w.contact.anchors, Field::Saved)) {
+        v.integer(a.key, Field::Hashed);
+        visit_vec3(v, a.spring, Field::Hashed);
+        v.real(a.twist, Field::Hashed);
+        visit_vec3(v, a.roll, Field::Hashed);
+        v.real(a.stiffness, Field::Hashed);
+        v.real(a.credit, Field::Hashed);
+    }
+    for (auto& m : v.sequence(w.contact.manifolds, Field::Saved)) {
+        v.integer(m.key, Field::Hashed);
+        v.integer(m.count, Field::Hashed);
+        if (!v.check(m.count >= 0 && m.count <= PairManifold::k_capacity,
+                     "corrupt snapshot: a contact manifold has a bad point count"))
+            return;
+        for (int i = 0; i < m.count; ++i) {
+            visit_vec3(v, m.points[static_cast<size_t>(i)].local_a, Field::Hashed);
+            visit_vec3(v, m.points[static_cast<size_t>(i)].local_b, Field::Hashed);
+        }
+    }
+}
+
+template <class V, class W> void visit_constraints(V& v, W& w)
+{
+    std::vector<Entity> live;
+    w.constraints.reg.pool().for_each_alive([&](Entity e) { live.push_back(e); });
+    visit_each(v, live, "constraints were created or destroyed since this snapshot was taken", [&](Entity e) {
+        auto& c = w.constraints.reg.template get<ConstraintState>(e);
+        v.flag(c.broken, Field::Hashed);
+        visit_vec3(v, c.impulse, Field::Hashed);
+        visit_vec3(v, c.ang_impulse, Field::Hashed);
+        visit_vec3(v, c.limit_impulse[0], Field::Hashed);
+        visit_vec3(v, c.limit_impulse[1], Field::Hashed);
+    });
+    v.integer(w.constraints.broken_count, Field::Saved);
+}
+
+/// Every field of the state, in one fixed order. W is World::Impl (restore) or const World::Impl.
+template <class V, class W> void visit_state(V& v, W& w)
+{
+    v.real(w.time, Field::Hashed);
+    v.integer(w.step_count, Field::Hashed);
+    v.real(w.accumulator, Field::Saved);
+    visit_bodies(v, w);
+    visit_contacts(v, w);
+    visit_constraints(v, w);
+}
+
+} // namespace supermodal
