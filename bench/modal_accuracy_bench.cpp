@@ -24,11 +24,11 @@ sm::BodyDef body(int which, int modes, double yield = std::numeric_limits<double
         def.shape.radii = {0.5, 0.019, 0.0445};
         def.shape.epsilon1 = def.shape.epsilon2 = 0.05;
         def.density = 450.0;
-        def.modal.young = 11e9;
+        def.young = 11e9;
     } else {
         def.shape.radii = {0.5, 0.5, 0.5};
         def.density = 1000.0;
-        def.modal.young = 1e7;
+        def.young = 1e7;
     }
     def.modal.enabled = true;
     def.modal.mode_count = modes;

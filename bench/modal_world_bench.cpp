@@ -24,7 +24,7 @@ sm::BodyDef board(int modes, sm::ModalIntegrator integrator)
     def.density = 450.0;
     def.modal.enabled = modes > 0;
     def.modal.mode_count = modes > 0 ? modes : 1;
-    def.modal.young = 11e9;
+    def.young = 11e9;
     def.modal.integrator = integrator;
     def.modal.damping_ratio = 0.0;
     return def;

@@ -3,7 +3,6 @@
 
 #include "supermodal/body.h"
 
-#include <chrono>
 #include <numeric>
 #include <utility>
 
@@ -25,13 +24,14 @@ Status EditorSession::load_scene(Scene scene)
         return world.error();
     m_scene = std::move(scene);
     m_world.emplace(std::move(*world));
+    attach_step_listener();
     m_drag.reset();
     m_push.reset();
     m_mould.reset();
     m_step_ms.clear();
     m_steps_run = 0;
     ++m_generation;
-    m_frame_backlog = 0.0;
+    m_step_pending = false;
     m_last_effect = SetEffect::Rebuilt;
     return {};
 }
@@ -75,34 +75,72 @@ void EditorSession::step(int count)
 {
     if (!m_world)
         return;
-    for (int i = 0; i < count; ++i) {
-        apply_loads();
-        const auto start = std::chrono::steady_clock::now();
-        m_world->step();
-        const std::chrono::duration<double, std::milli> spent = std::chrono::steady_clock::now() - start;
-        m_step_ms.push_back(spent.count());
-        if (m_step_ms.size() > k_timing_window)
-            m_step_ms.pop_front();
-        ++m_steps_run;
-    }
+    for (int i = 0; i < count; ++i)
+        m_world->step(); // the step listener applies the loads
+    record_last_step();
 }
 
 int EditorSession::frame(double real_seconds)
 {
     if (!m_world || !m_playing || !(real_seconds > 0.0))
         return 0;
-    // Whole steps of dt, like World::advance, but one at a time so the loads and timing apply to each.
-    const double dt = m_world->settings().dt;
-    m_frame_backlog += real_seconds;
-    int steps = 0;
-    while (m_frame_backlog >= dt && steps < m_world->settings().max_steps_per_advance) {
-        m_frame_backlog -= dt;
-        ++steps;
-    }
-    if (steps == m_world->settings().max_steps_per_advance)
-        m_frame_backlog = 0.0; // a slow frame drops its backlog instead of spiralling
-    step(steps);
+    const int steps = m_world->advance(real_seconds);
+    record_last_step();
     return steps;
+}
+
+EditorSession::EditorSession(EditorSession&& other) noexcept
+{
+    *this = std::move(other);
+}
+
+// Every member moves; only the world's step listener is pointed at the new session.
+EditorSession& EditorSession::operator=(EditorSession&& other) noexcept
+{
+    if (this == &other)
+        return *this;
+    m_scene = std::move(other.m_scene);
+    m_world = std::move(other.m_world);
+    other.m_world.reset();
+    m_drag = std::move(other.m_drag);
+    m_push = std::move(other.m_push);
+    m_mould = std::move(other.m_mould);
+    m_mould_reached = other.m_mould_reached;
+    m_step_ms = std::move(other.m_step_ms);
+    m_step_pending = other.m_step_pending;
+    m_steps_run = other.m_steps_run;
+    m_playing = other.m_playing;
+    m_generation = other.m_generation;
+    m_last_effect = other.m_last_effect;
+    if (m_world)
+        attach_step_listener();
+    return *this;
+}
+
+void EditorSession::attach_step_listener()
+{
+    world_set_step_listener(
+        *m_world, [](World&, void* session) { static_cast<EditorSession*>(session)->before_step(); }, this);
+}
+
+// Before each step, however it is run (Step, a played frame, a script): the drag spring, pushes and
+// moulding act on every step, and the last step's time joins the window.
+void EditorSession::before_step()
+{
+    record_last_step();
+    apply_loads();
+    ++m_steps_run;
+    m_step_pending = true;
+}
+
+void EditorSession::record_last_step()
+{
+    if (!m_step_pending || !m_world)
+        return;
+    m_step_pending = false;
+    m_step_ms.push_back(m_world->profile().total_ms);
+    if (m_step_ms.size() > k_timing_window)
+        m_step_ms.pop_front();
 }
 
 double EditorSession::ms_per_step() const
@@ -131,6 +169,7 @@ Status EditorSession::rebuild_keeping_state(const Scene& edited)
     if (!world)
         return world.error();
     m_world.emplace(std::move(*world));
+    attach_step_listener();
     m_drag.reset();
     m_push.reset();
     m_mould.reset();

@@ -54,6 +54,13 @@ struct DragSpring {
 class EditorSession
 {
   public:
+    EditorSession() = default;
+    // The world's step listener points at its session: a move points it at the new one.
+    EditorSession(EditorSession&& other) noexcept;
+    EditorSession& operator=(EditorSession&& other) noexcept;
+    EditorSession(const EditorSession&) = delete;
+    EditorSession& operator=(const EditorSession&) = delete;
+
     /// Reads a scene file and builds its world. On failure the session keeps what it had.
     Status load(const std::string& path);
     /// Takes a parsed scene and builds its world.
@@ -66,7 +73,8 @@ class EditorSession
     [[nodiscard]] bool playing() const { return m_playing; }
     /// Runs `count` fixed steps now, playing or not, with the drag spring and push loads applied.
     void step(int count);
-    /// One frame of `real_seconds` [s]: while playing, advances the world by whole steps of dt.
+    /// One frame of `real_seconds` [s]: while playing, World::advance() runs the whole steps of dt it
+    /// holds (its backlog cap and interpolation alpha included).
     /// Returns the steps run.
     int frame(double real_seconds);
 
@@ -128,6 +136,9 @@ class EditorSession
   private:
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
+    void attach_step_listener();
+    void before_step();
+    void record_last_step();
     void apply_mould();
 
     struct PushLoad {
@@ -155,7 +166,7 @@ class EditorSession
     std::optional<DragSpring> m_drag;
     std::optional<PushLoad> m_push;
     std::deque<double> m_step_ms;
-    double m_frame_backlog = 0.0; ///< Real time not yet stepped [s].
+    bool m_step_pending = false; ///< A step ran whose time is not yet in m_step_ms.
     uint64_t m_steps_run = 0;
     uint64_t m_generation = 0;
 };

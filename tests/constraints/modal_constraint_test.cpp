@@ -42,8 +42,8 @@ sm::Entity add_board(sm::World& w, int modes, double zeta)
     def.density = 450.0;
     def.modal.enabled = true;
     def.modal.mode_count = modes;
-    def.modal.young = k_young;
-    def.modal.poisson = 0.3;
+    def.young = k_young;
+    def.poisson = 0.3;
     def.modal.damping_ratio = zeta;
     return sm::create_body(w, def);
 }

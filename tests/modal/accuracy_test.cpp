@@ -26,8 +26,8 @@ sm::BodyDef board(int modes)
     def.modal.enabled = true;
     def.modal.mode_count = modes;
     def.modal.lattice = {4, 1, 1};
-    def.modal.young = 11e9;
-    def.modal.poisson = 0.3;
+    def.young = 11e9;
+    def.poisson = 0.3;
     def.modal.damping_ratio = 0.02;
     return def;
 }

@@ -36,7 +36,7 @@ DropRun drop_soft_ball(double epsilon, double dt_ratio, double restitution, doub
     def.restitution = restitution;
     def.modal.enabled = true;
     def.modal.mode_count = 8;
-    def.modal.young = 2e6;
+    def.young = 2e6;
     def.modal.integrator = sm::ModalIntegrator::Exact;
     sm::World probe;
     const auto basis = sm::modal_basis_for(probe, def);

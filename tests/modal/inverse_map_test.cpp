@@ -25,7 +25,7 @@ sm::Entity bent_board(sm::World& world)
     def.density = 450.0;
     def.modal.enabled = true;
     def.modal.mode_count = 12;
-    def.modal.young = 11e9;
+    def.young = 11e9;
     const sm::Entity board = sm::create_body(world, def);
     const sm::ModalBasis& basis = *sm::body_modal_basis(world, board);
     const sm::Vec3 top{0, k_board_thickness / 2, 0};

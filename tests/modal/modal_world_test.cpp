@@ -38,8 +38,8 @@ sm::BodyDef board_body(int modes, sm::ModalIntegrator integrator, double zeta)
     def.density = 450.0;
     def.modal.enabled = true;
     def.modal.mode_count = modes;
-    def.modal.young = 11e9;
-    def.modal.poisson = 0.3;
+    def.young = 11e9;
+    def.poisson = 0.3;
     def.modal.integrator = integrator;
     def.modal.damping_ratio = zeta;
     return def;

@@ -28,8 +28,8 @@ sm::BodyDef board(std::array<int, 3> cells, int modes)
     def.modal.enabled = true;
     def.modal.mode_count = modes;
     def.modal.lattice = cells;
-    def.modal.young = 11e9;
-    def.modal.poisson = 0.3;
+    def.young = 11e9;
+    def.poisson = 0.3;
     return def;
 }
 

@@ -50,8 +50,8 @@ TEST(SceneModal, ReadsDynamicsAndMaterial)
     EXPECT_EQ(modal.mode_count, 6);
     EXPECT_EQ(modal.lattice, (std::array<int, 3>{8, 1, 1}));
     EXPECT_EQ(modal.integrator, sm::ModalIntegrator::CentralDifference);
-    EXPECT_EQ(modal.young, 11e9);
-    EXPECT_EQ(modal.poisson, 0.25);
+    EXPECT_EQ(body.def.young, 11e9); // one material per body: the modes use it too
+    EXPECT_EQ(body.def.poisson, 0.25);
     EXPECT_EQ(modal.damping_ratio, 0.02); // from the material
     EXPECT_EQ(body.def.density, 450.0);
 

@@ -87,8 +87,8 @@ void compare_body(Diff& d, const sm::SceneBody& a, const sm::SceneBody& b, const
     d.check(x.modal.lattice == y.modal.lattice, w + ".modal.lattice");
     d.check(x.modal.integrator == y.modal.integrator, w + ".modal.integrator");
     d.num(x.modal.damping_ratio, y.modal.damping_ratio, w + ".modal.damping_ratio");
-    d.num(x.modal.young, y.modal.young, w + ".modal.young");
-    d.num(x.modal.poisson, y.modal.poisson, w + ".modal.poisson");
+    d.num(x.young, y.young, w + ".young");
+    d.num(x.poisson, y.poisson, w + ".poisson");
     d.check(a.material == b.material, w + ".material");
     d.check(a.dynamics == b.dynamics, w + ".dynamics");
     d.check(a.parent == b.parent, w + ".parent");

@@ -196,7 +196,7 @@ CellResult run_cell(const CellDef& def)
         body.modal.enabled = true;
         body.modal.mode_count = 8;
         body.modal.integrator = def.exact_modal ? ModalIntegrator::Exact : ModalIntegrator::CentralDifference;
-        body.modal.young = 2e6;
+        body.young = 2e6;
         if (refuse(out, validate(body)))
             return out;
         out.limit_dt = modal_limit_dt(body);

@@ -36,7 +36,7 @@ inline BodyDef soft_ball_def(Vec3 position, double damping_ratio)
     def.shape.radii = {0.3, 0.3, 0.3};
     def.position = position;
     def.modal.enabled = true;
-    def.modal.young = 2e5;
+    def.young = 2e5;
     def.modal.damping_ratio = damping_ratio;
     return def;
 }

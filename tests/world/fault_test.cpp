@@ -84,7 +84,7 @@ TEST(Fault, ModalOverflowIsReportedAndTheShapeGoesBackToRest)
     sm::BodyDef def = ellipsoid_def({0.5, 0.1, 0.1});
     def.modal.enabled = true;
     def.modal.mode_count = 4;
-    def.modal.young = 1e6;
+    def.young = 1e6;
     def.motion = sm::MotionType::Dynamic;
     const sm::Entity body = sm::create_body(world, def);
     ASSERT_FALSE(body.is_null());

@@ -129,6 +129,62 @@ TEST(World, SnapshotBytesRoundTripAndForeignLayoutsAreRefused)
     EXPECT_EQ(world.state_hash(), straight);
 }
 
+TEST(World, StepListenerRunsBeforeEveryStepAndItsForcesAct)
+{
+    // A listener pushing up with exactly the body's weight holds it still: it runs before every step
+    // (step() and each step of advance()) and its force lasts that step.
+    sm::WorldDef def = sm::default_world_def();
+    def.dt = 0.01;
+    sm::World world(def);
+    const sm::Entity body = sm::create_body(world, ellipsoid_def({0.1, 0.1, 0.1}));
+    struct Hold {
+        sm::Entity body;
+        int calls = 0;
+    } hold{body};
+    sm::world_set_step_listener(
+        world,
+        [](sm::World& w, void* user) {
+            auto& h = *static_cast<Hold*>(user);
+            ++h.calls;
+            const double weight = sm::body_mass_properties(w, h.body).mass * 9.81;
+            sm::apply_force(w, h.body, {0, weight, 0}, sm::body_center_of_mass(w, h.body));
+        },
+        &hold);
+    world.step();
+    EXPECT_EQ(world.advance(0.035), 3);
+    EXPECT_EQ(hold.calls, 4);
+    // Gravity and the push cancel to round-off: h·(g − m g / m) per step.
+    EXPECT_NEAR(sm::body_linear_velocity(world, body).y, 0.0, 1e-12);
+    sm::world_set_step_listener(world, nullptr, nullptr);
+    world.step();
+    EXPECT_EQ(hold.calls, 4);
+    EXPECT_NEAR(sm::body_linear_velocity(world, body).y, -9.81 * 0.01, 1e-12);
+}
+
+TEST(World, SetSettingsChangesWhatMayChangeAndRefusesTheRest)
+{
+    sm::World world = make_busy_world();
+    sm::WorldDef def = world.settings();
+    def.gravity = {0, -1.62, 0};
+    def.substep_count = 3;
+    ASSERT_TRUE(world.set_settings(def).ok());
+    EXPECT_EQ(world.settings().substep_count, 3);
+    EXPECT_EQ(world.settings().gravity.y, -1.62);
+    world.step();
+    sm::WorldDef bad = world.settings();
+    bad.dt = 0.5 * bad.dt;
+    const sm::Status dt = world.set_settings(bad);
+    ASSERT_FALSE(dt.ok());
+    EXPECT_EQ(dt.error().where, "dt");
+    bad = world.settings();
+    bad.thread_count = 2;
+    EXPECT_EQ(world.set_settings(bad).error().where, "thread_count");
+    bad = world.settings();
+    bad.substep_count = 0;
+    EXPECT_EQ(world.set_settings(bad).error().where, "substep_count");
+    EXPECT_EQ(world.settings().substep_count, 3); // unchanged by the refusals
+}
+
 TEST(World, TwoWorldsSideBySideDoNotInteract)
 {
     sm::World a = make_busy_world();

@@ -44,9 +44,8 @@ struct ModalBodyDef {
                                   ///< mode of the lattice, the full model (scene "full").
     std::array<int, 3> lattice{}; ///< Lattice cells per axis, each in [0, 128]; 0 = from the aspect ratio.
     ModalIntegrator integrator = ModalIntegrator::Exact;
-    double damping_ratio = 0.01; ///< ζ of every mode [-], ≥ 0 (1 = critical).
-    double young = 1e9;          ///< Young's modulus E [Pa], > 0. Density is BodyDef::density.
-    double poisson = 0.3;        ///< Poisson's ratio ν [-], in (−1, 0.5).
+    double damping_ratio = 0.01; ///< ζ of every mode [-], ≥ 0 (1 = critical). The stiffness and density
+                                 ///< are the body's material: BodyDef::young, poisson, density.
     /// von Mises yield stress σ_y [Pa], > 0; past it the rest shape moves (plastic relief, the paper's
     /// clay moulding, docs/modal.md). ∞ (the default): elastic.
     double yield_stress = std::numeric_limits<double>::infinity();
@@ -74,8 +73,9 @@ struct BodyDef {
     double gravity_scale = 1.0;          ///< Multiplies the world's gravity [-].
     double friction = 0.5;               ///< Coulomb coefficient [-], ≥ 0; a pair uses √(μa·μb).
     double restitution = 0.2;            ///< [-], in [0, 1]; a pair uses the larger of the two.
-    double young = 1e9;   ///< Young's modulus E [Pa], > 0, for ContactStiffness::Material contact.
-    double poisson = 0.3; ///< Poisson's ratio ν [-], in (−1, 0.5), for ContactStiffness::Material.
+    double young = 1e9;   ///< Young's modulus E [Pa], > 0: the modes' stiffness (modal bodies) and the
+                          ///< Hertz stiffness of ContactStiffness::Material contact.
+    double poisson = 0.3; ///< Poisson's ratio ν [-], in (−1, 0.5); used with young.
     double rolling_resistance = 0.0; ///< Rolling lever arm ℓ [m], ≥ 0: a rolling contact is resisted
                                      ///< by a torque up to ℓ·F_n; a pair uses the larger of the two.
     ModalBodyDef modal{};            ///< Deformation; rigid unless modal.enabled.

@@ -158,8 +158,8 @@ typedef struct sm_body_def {
     double restitution;       /* [-], in [0, 1]. */
     int modal_mode_count;     /* 0: rigid. 1..256: deforms through this many vibration modes (dynamic
                                  superquadrics only; lattice chosen from the aspect ratio). */
-    double young;             /* Modal: Young's modulus [Pa], > 0. */
-    double poisson;           /* Modal: Poisson's ratio [-], in (-1, 0.5). */
+    double young;             /* Young's modulus [Pa], > 0: the modes' stiffness and material contact. */
+    double poisson;           /* Poisson's ratio [-], in (-1, 0.5). */
     double damping_ratio;     /* Modal: damping ratio of every mode [-], >= 0. */
 } sm_body_def;
 

@@ -109,6 +109,10 @@ class Snapshot
     std::vector<std::byte> m_bytes;
 };
 
+/// Called at the start of every step, by step() and by each step advance() runs, before the world locks:
+/// the place to apply this step's host forces (a drag spring, a controller), since forces last one step.
+using StepListenerFn = void (*)(World& world, void* user_data);
+
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.
 class World
 {
@@ -149,9 +153,13 @@ class World
     struct Impl; ///< Engine-internal; hosts use the free functions.
 
   private:
+    friend void world_set_step_listener(World& world, StepListenerFn fn, void* user_data);
     friend Impl& impl_of(World& world);
     friend const Impl& impl_of(const World& world);
     std::unique_ptr<Impl> m_impl;
 };
+
+/// Sets (or with null, removes) the world's step listener; user_data is passed back to it.
+void world_set_step_listener(World& world, StepListenerFn fn, void* user_data);
 
 } // namespace supermodal

@@ -44,6 +44,8 @@ sm_status to_body_def(const char* fn, const sm_body_def& d, BodyDef& def)
     def.gravity_scale = d.gravity_scale;
     def.friction = d.friction;
     def.restitution = d.restitution;
+    def.young = d.young;
+    def.poisson = d.poisson;
     // Fields the engine ignores for this body (plane for a superquadric, modal for a rigid body) must be
     // finite too: one rule, whatever the body.
     const double numbers[] = {d.radii.x,      d.radii.y,        d.radii.z,        d.epsilon1,
@@ -56,8 +58,6 @@ sm_status to_body_def(const char* fn, const sm_body_def& d, BodyDef& def)
     if (d.modal_mode_count > 0) {
         def.modal.enabled = true;
         def.modal.mode_count = d.modal_mode_count;
-        def.modal.young = d.young;
-        def.modal.poisson = d.poisson;
         def.modal.damping_ratio = d.damping_ratio;
     }
     if (const Status s = validate(def); !s)
@@ -107,8 +107,8 @@ sm_body_def sm_body_def_default(void)
     d.friction = b.friction;
     d.restitution = b.restitution;
     d.modal_mode_count = 0;
-    d.young = b.modal.young;
-    d.poisson = b.modal.poisson;
+    d.young = b.young;
+    d.poisson = b.poisson;
     d.damping_ratio = b.modal.damping_ratio;
     return d;
 }

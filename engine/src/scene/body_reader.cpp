@@ -289,12 +289,12 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
     size_t type = 0;
     if (const Json* type_value = r.member(*dynamics, "type"))
         r.read_choice(*type_value, pointer_join(dynamics_where, "type"), k_dynamics_types, type);
-    // Young's modulus, Poisson's ratio, plasticity and the damping ratio come from the material; the
-    // body's own "damping_ratio" wins over the material's.
+    // Plasticity and the damping ratio come from the material (as do Young's modulus and Poisson's
+    // ratio, on BodyDef); the body's own "damping_ratio" wins over the material's.
     const MaterialDef material = material_of(scene, materials, out_body);
+    out_body.def.young = material.young;
+    out_body.def.poisson = material.poisson;
     ModalBodyDef& modal = out_body.def.modal;
-    modal.young = material.young;
-    modal.poisson = material.poisson;
     modal.damping_ratio = material.damping_ratio;
     modal.yield_stress = material.yield_stress;
     modal.hardening = material.hardening;

@@ -144,8 +144,7 @@ Json body_json(const Scene& scene, const SceneBody& body)
     const ModalBodyDef& m = d.modal;
     if (body.dynamics == DynamicsType::Rigid && !m.enabled && m.mode_count == no_dynamics.mode_count &&
         m.lattice == no_dynamics.lattice && m.integrator == no_dynamics.integrator &&
-        m.damping_ratio == no_dynamics.damping_ratio && m.young == no_dynamics.young &&
-        m.poisson == no_dynamics.poisson)
+        m.damping_ratio == no_dynamics.damping_ratio)
         return j;
     Json dyn = Json::object();
     dyn["type"] = k_dynamics_names[static_cast<size_t>(body.dynamics)];

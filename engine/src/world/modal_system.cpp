@@ -120,8 +120,8 @@ ModalBasisDef modal_basis_def(const BodyDef& def)
     ModalBasisDef out = default_modal_basis_def();
     out.shape = def.shape;
     out.density = def.density;
-    out.young = def.modal.young;
-    out.poisson = def.modal.poisson;
+    out.young = def.young;
+    out.poisson = def.poisson;
     out.lattice.cells = def.modal.lattice;
     out.mode_count = def.modal.mode_count;
     return out;

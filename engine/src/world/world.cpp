@@ -161,7 +161,16 @@ void World::Impl::step()
 
 void World::step()
 {
+    if (m_impl->step_listener != nullptr)
+        m_impl->step_listener(*this, m_impl->step_listener_data);
     m_impl->step();
+}
+
+void world_set_step_listener(World& world, StepListenerFn fn, void* user_data)
+{
+    SM_ASSERT(!world.m_impl->locked, "the step listener cannot change while the world steps");
+    world.m_impl->step_listener = fn;
+    world.m_impl->step_listener_data = user_data;
 }
 
 int World::advance(double real_seconds)
@@ -173,7 +182,7 @@ int World::advance(double real_seconds)
     w.accumulator += real_seconds;
     int steps = 0;
     while (w.accumulator >= w.def.dt && steps < w.def.max_steps_per_advance) {
-        w.step();
+        step();
         w.accumulator -= w.def.dt;
         ++steps;
     }

@@ -25,6 +25,8 @@ struct World::Impl {
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     std::shared_ptr<ModalBasisCache> modal_bases; ///< Model: one basis per distinct modal def (maybe shared).
     std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
+    StepListenerFn step_listener = nullptr;                          ///< Host hook before each step, or null.
+    void* step_listener_data = nullptr;
     bool locked = false;               ///< True inside step(): mutations assert.
     std::shared_ptr<TaskSystem> tasks; ///< The host's task system, the built-in pool, or null (one thread).
     Parallel parallel;                 ///< The step's loops over `tasks`.
