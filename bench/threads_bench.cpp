@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// Threads: one scene stepped with 1 and 2 threads of the built-in pool. Per run, the scene is loaded,
+// settled for k_settle steps, then k_timed steps are timed: wall time per step (what a host sees on
+// free cores), CPU time of the whole process per step, and the speed-up against 1 thread comes from
+// two rows. Written against the public API only, so the same file measures older builds.
+// Usage: threads_bench [benchmark flags] SCENE.json [SCENE.json ...]
+#include "supermodal/scene.h"
+#include "supermodal/world.h"
+
+#include <benchmark/benchmark.h>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+namespace sm = supermodal;
+
+namespace
+{
+
+constexpr int k_settle = 240; // 1 s at 1/240 s: bodies are falling into and onto each other
+constexpr int k_timed = 120;
+
+double process_cpu_seconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+void BM_Threads(benchmark::State& st, const std::string& path)
+{
+    const int threads = static_cast<int>(st.range(0));
+    sm::Result<sm::Scene> scene = sm::load_scene(path);
+    if (!scene) {
+        st.SkipWithError(scene.error().message().c_str());
+        return;
+    }
+    scene->world.thread_count = threads;
+    double ms = 0.0, cpu_ms = 0.0;
+    uint64_t hash = 0;
+    for (auto _ : st) {
+        sm::Result<sm::World> world = sm::build_world(*scene);
+        if (!world) {
+            st.SkipWithError(world.error().message().c_str());
+            return;
+        }
+        for (int i = 0; i < k_settle; ++i)
+            world->step();
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        for (int i = 0; i < k_timed; ++i)
+            world->step();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        st.SetIterationTime(seconds);
+        ms = 1e3 * seconds / k_timed;
+        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed;
+        hash = world->state_hash();
+    }
+    st.counters["ms_per_step"] = ms;
+    st.counters["cpu_ms_per_step"] = cpu_ms;
+    st.counters["bodies"] = static_cast<double>(scene->bodies.size());
+    // The low 32 bits of the hash: equal across thread counts (a determinism check in the table).
+    st.counters["hash_low"] = static_cast<double>(hash & 0xffffffffu);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    benchmark::Initialize(&argc, argv);
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: threads_bench [benchmark flags] SCENE.json [SCENE.json ...]\n");
+        return 2;
+    }
+    for (int i = 1; i < argc; ++i) {
+        const std::string path = argv[i];
+        const std::string name = "BM_Threads/" + path.substr(path.find_last_of('/') + 1);
+        benchmark::RegisterBenchmark(name.c_str(), BM_Threads, path)
+            ->Arg(1)
+            ->Arg(2)
+            ->Iterations(1)
+            ->Repetitions(3)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond);
+    }
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
