@@ -1,4 +1,4 @@
-// Tests for engine/src/modal/modal_world.cpp and modal_api.cpp: modal bodies stepping in a world.
+// Tests for engine/src/world/modal_system.cpp and modal_api.cpp: modal bodies stepping in a world.
 #include "modal_scenes.h"
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
@@ -6,6 +6,7 @@
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
 #include "support/world_fixture.h"
+#include "world/world_impl.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -499,4 +500,55 @@ TEST(ModalWorld, WorldsSharingABasisCacheBuildItOnceAndStepAlike)
         own->step();
     }
     EXPECT_EQ(second->state_hash(), own->state_hash());
+}
+
+TEST(ModalWorld, IdenticalBodiesShareOneModel)
+{
+    // Like colliders: one read-only ModalModel (and its substep maps) per distinct basis, rest shape and
+    // ModalBodyDef; a body that differs only in damping shares the surface. Each keeps its own state,
+    // loads and deformed samples.
+    sm::World world(zero_g_world(1e-3));
+    sm::BodyDef def = board_body(6, sm::ModalIntegrator::Exact, 0.01);
+    const sm::Entity a = sm::create_body(world, def);
+    def.position = {0, 1, 0};
+    const sm::Entity b = sm::create_body(world, def);
+    def.position = {0, 2, 0};
+    def.modal.damping_ratio = 0.02;
+    const sm::Entity c = sm::create_body(world, def);
+    const sm::World::Impl& w = sm::impl_of(world);
+    const sm::ModalBody& ma = w.reg.get<sm::ModalBody>(a);
+    const sm::ModalBody& mb = w.reg.get<sm::ModalBody>(b);
+    const sm::ModalBody& mc = w.reg.get<sm::ModalBody>(c);
+    EXPECT_EQ(w.modal_models.size(), 2u);
+    EXPECT_EQ(ma.model, mb.model);
+    EXPECT_EQ(ma.maps, mb.maps);
+    EXPECT_NE(ma.model, mc.model);
+    EXPECT_NE(ma.maps, mc.maps);
+    EXPECT_EQ(ma.model->surface, mc.model->surface);
+    EXPECT_NE(ma.deformed.samples, mb.deformed.samples);
+    EXPECT_NE(&ma.state.q, &mb.state.q);
+}
+
+TEST(ModalWorld, ATwinSharingTheModelDoesNotChangeABody)
+{
+    // The shared substep maps are made once per model and substep; a body steps bit for bit as it does
+    // alone whatever its twin does.
+    auto run = [](bool twin) {
+        sm::World world(zero_g_world(1e-3));
+        sm::BodyDef def = board_body(6, sm::ModalIntegrator::Exact, 0.01);
+        const sm::Entity board = sm::create_body(world, def);
+        if (twin) {
+            def.position = {0, 1, 0};
+            const sm::Entity other = sm::create_body(world, def);
+            std::vector<double> q(6, 2e-4), v(6, 0.0);
+            EXPECT_TRUE(sm::set_body_modal_state(world, other, q, v).ok());
+        }
+        excite_all(world, board);
+        for (int i = 0; i < 50; ++i)
+            world.step();
+        return sm::body_modal_state(world, board);
+    };
+    const sm::BodyModalState alone = run(false), paired = run(true);
+    EXPECT_EQ(alone.amplitudes, paired.amplitudes);
+    EXPECT_EQ(alone.velocities, paired.velocities);
 }

@@ -21,27 +21,27 @@ constexpr double k_gain_fraction = 0.5;
 constexpr double k_target_fraction = 0.25;
 
 // How far mode k may move the surface [m].
-double mode_reach(const ModalBody& b, size_t k, double force)
+double mode_reach(const ModalModel& m, const ModalState& s, size_t k, double force)
 {
-    const double w = b.omega[k];
+    const double w = m.omega[k];
     if (!(w > 0.0))
         return std::numeric_limits<double>::infinity(); // no spring to bound it: keep the mode
-    const double elastic = b.q[k] - b.q_plastic[k];
-    const double rate = b.q_dot[k] / w;
+    const double elastic = s.q[k] - s.q_plastic[k];
+    const double rate = s.q_dot[k] / w;
     const double amplitude = std::sqrt(elastic * elastic + rate * rate);
     const double overshoot = 2.0 * std::abs(force) / (w * w);
-    return b.surface->mode_reach[k] * std::max(amplitude, overshoot);
+    return m.surface->mode_reach[k] * std::max(amplitude, overshoot);
 }
 
 } // namespace
 
-ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> force)
+ActiveChoice choose_active_modes(const ModalModel& m, const ModalState& s, std::span<const double> force)
 {
-    const size_t r = b.q.size();
-    const double tol = b.adaptive_tolerance;
+    const size_t r = s.q.size();
+    const double tol = m.adaptive_tolerance;
     std::array<double, k_max_modes> reach; // per mode, computed once for both sums below
     for (size_t k = 0; k < r; ++k)
-        reach[k] = mode_reach(b, k, force[k]);
+        reach[k] = mode_reach(m, s, k, force[k]);
     // Going down from the highest mode: the first count whose left-out modes reach past the gain
     // threshold, and past the target (also the drop threshold).
     double tail = 0.0;
@@ -58,11 +58,11 @@ ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> for
             break;
         }
     }
-    size_t active = b.active;
+    size_t active = s.active;
     if (need > active || target < active)
         active = target;
     for (size_t k = r; k-- > active;)
-        if (b.q_plastic[k] != 0.0) {
+        if (s.q_plastic[k] != 0.0) {
             active = k + 1;
             break;
         }
@@ -70,9 +70,9 @@ ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> for
     out.active = active;
     for (size_t k = active; k < r; ++k)
         out.truncation += reach[k];
-    if (b.lattice_changes.size() == r)
+    if (m.lattice_changes.size() == r)
         for (size_t k = 0; k < active; ++k)
-            out.lattice_error += 2.0 * k_lattice_change_safety * b.lattice_changes[k] * reach[k];
+            out.lattice_error += 2.0 * k_lattice_change_safety * m.lattice_changes[k] * reach[k];
     return out;
 }
 

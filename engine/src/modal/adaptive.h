@@ -21,12 +21,13 @@ struct ActiveChoice {
     double lattice_error = 0.0;
 };
 
-/// The active count for body b about to step under generalized forces `force` (r, [N/√kg]). Mode k may
-/// move the surface by reach_k · max(its amplitude now, 2 |F_k| / ω_k²): twice the static
-/// deflection is what a suddenly applied load overshoots to. The body gains modes when the modes left
+/// The active count for a body of model m in state s about to step under generalized forces `force` (r,
+/// [N/√kg]). Mode k may move the surface by reach_k · max(its amplitude now, 2 |F_k| / ω_k²): twice the
+/// static deflection is what a suddenly applied load overshoots to. The body gains modes when the modes left
 /// out could reach more than half the tolerance, and then takes enough to leave out at most a quarter;
 /// it drops modes only when those left out stay under a quarter, so the count does not chatter. Modes
 /// holding a plastic offset stay active.
-[[nodiscard]] ActiveChoice choose_active_modes(const ModalBody& b, std::span<const double> force);
+[[nodiscard]] ActiveChoice choose_active_modes(const ModalModel& m, const ModalState& s,
+                                               std::span<const double> force);
 
 } // namespace supermodal::modal

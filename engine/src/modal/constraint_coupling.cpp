@@ -67,10 +67,11 @@ Mat3 sum_outer(const std::vector<Vec3>& v, const std::vector<double>& weight)
 // stability limit when asked for, the exact step otherwise.
 modal::ModeStep mode_map(const ModalBody& b, size_t k, double h)
 {
-    const double w = b.omega[k];
-    if (b.integrator == ModalIntegrator::CentralDifference && w * h < modal::k_central_difference_limit) {
+    const ModalModel& m = *b.model;
+    const double w = m.omega[k];
+    if (m.integrator == ModalIntegrator::CentralDifference && w * h < modal::k_central_difference_limit) {
         // v₁ = (v(1 − c) + h(F − ω²q))/(1 + c), q₁ = q + h v₁ with c = ζωh.
-        const double c = b.damping_ratio * w * h, d = 1.0 / (1.0 + c);
+        const double c = m.damping_ratio * w * h, d = 1.0 / (1.0 + c);
         modal::ModeStep s;
         s.a21 = -h * w * w * d;
         s.a22 = (1.0 - c) * d;
@@ -80,9 +81,9 @@ modal::ModeStep mode_map(const ModalBody& b, size_t k, double h)
         s.b1 = h * s.b2;
         return s;
     }
-    if (b.step_h == h && k < b.exact_steps.size())
-        return b.exact_steps[k];
-    return modal::exact_mode_step(w, b.damping_ratio, h);
+    if (b.maps->h == h && k < b.maps->exact.size())
+        return b.maps->exact[k];
+    return modal::exact_mode_step(w, m.damping_ratio, h);
 }
 
 } // namespace
@@ -94,7 +95,8 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
     if (b == nullptr || !is_finite(local) || !(h > 0.0))
         return false;
     out.h = h;
-    const ModalBasis& basis = *b->basis;
+    const ModalBasis& basis = *b->model->basis;
+    const ModalState& st = b->state;
     mode_field(basis, local, out.phi);
     if (with_rotation)
         mode_rotation(basis, local, out.psi);
@@ -105,14 +107,14 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
         out.phi[k] = rotate(rot, out.phi[k]);
         if (with_rotation)
             out.psi[k] = rotate(rot, out.psi[k]);
-        if (k >= b->active)
+        if (k >= st.active)
             continue; // an adaptive body's hidden mode: not felt, but its load still counts (push)
-        out.displacement += b->q[k] * out.phi[k];
+        out.displacement += st.q[k] * out.phi[k];
         if (with_rotation)
-            out.rotation += b->q[k] * out.psi[k];
+            out.rotation += st.q[k] * out.psi[k];
         const modal::ModeStep s = mode_map(*b, k, h);
         // The host loads (apply_force) are known now; contact loads join in the ModalUpdate stage.
-        out.drift[k] = ((s.a11 - 1.0) * b->q[k] + s.a12 * b->q_dot[k] + s.b1 * b->host_force[k]) / h;
+        out.drift[k] = ((s.a11 - 1.0) * st.q[k] + s.a12 * st.q_dot[k] + s.b1 * st.host_force[k]) / h;
         out.gain[k] = s.b1 / h;
     }
     if (!is_finite(out.displacement) || !is_finite(out.rotation)) {
@@ -127,7 +129,7 @@ Vec3 modal_anchor_velocity(const ModalAnchor& a)
 {
     Vec3 v{};
     for (size_t k = 0; k < a.phi.size(); ++k)
-        v += (a.drift[k] + a.gain[k] * a.body->load[k]) * a.phi[k];
+        v += (a.drift[k] + a.gain[k] * a.body->loads.load[k]) * a.phi[k];
     return v;
 }
 
@@ -135,7 +137,7 @@ Vec3 modal_anchor_spin(const ModalAnchor& a)
 {
     Vec3 w{};
     for (size_t k = 0; k < a.psi.size(); ++k)
-        w += (a.drift[k] + a.gain[k] * a.body->load[k]) * a.psi[k];
+        w += (a.drift[k] + a.gain[k] * a.body->loads.load[k]) * a.psi[k];
     return w;
 }
 
@@ -160,9 +162,9 @@ void modal_anchor_push(ModalAnchor& a, const Vec3& impulse, const Vec3& angular_
     if (a.body == nullptr)
         return;
     for (size_t k = 0; k < a.phi.size(); ++k)
-        a.body->load[k] += dot(a.phi[k], impulse) / a.h;
+        a.body->loads.load[k] += dot(a.phi[k], impulse) / a.h;
     for (size_t k = 0; k < a.psi.size(); ++k)
-        a.body->load[k] += dot(a.psi[k], angular_impulse) / a.h;
+        a.body->loads.load[k] += dot(a.psi[k], angular_impulse) / a.h;
 }
 
 } // namespace supermodal

@@ -47,7 +47,7 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
 /// Σ (gain_k/h) ψ_k ψ_kᵀ [1/(kg·m²)]: the same for spin per unit angular impulse.
 [[nodiscard]] Mat3 modal_anchor_inverse_inertia(const ModalAnchor& a);
 /// Q_k += (φ_k·J + ψ_k·L)/h for impulse J [N·s] and angular impulse L [N·m·s], world: a generalized
-/// force held over this substep (ModalBody::load, consumed by the ModalUpdate stage).
+/// force held over this substep (ModalLoads::load, consumed by the ModalUpdate stage).
 void modal_anchor_push(ModalAnchor& a, const Vec3& impulse, const Vec3& angular_impulse);
 
 } // namespace supermodal

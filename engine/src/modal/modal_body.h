@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
-// A modal body's components: the shared surface model and the per-body deformation (model, state,
-// diagnostics and scratch).
+// A modal body's components, grouped by who writes them while a world steps (MuJoCo's split: a const
+// model, mutable data). ModalModel is shared by identical bodies and read-only; ModalSubstepMaps, derived
+// from the model and the substep, is shared with it and written only between the parallel stages; the
+// rest is the body's own: ModalState (what the step changes, hashed and snapshotted), ModalLoads (what
+// contact, constraints and the host add during a substep, consumed by the step), DeformedSurface (written
+// by UpdateSurfaces) and ModalStats (diagnostics).
 #pragma once
 
 #include "contact/collider.h"
@@ -32,15 +36,42 @@ struct ModalSurface {
                                     ///< [1/√kg]: what an amplitude moves the surface by, at most.
 };
 
-/// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
-struct ModalBody {
-    // Model.
+/// Model of a modal body: everything its step reads and never writes. Shared (read-only, any thread) by
+/// the bodies made from the same basis, rest collider and ModalBodyDef.
+struct ModalModel {
     std::shared_ptr<const ModalBasis> basis;
     std::shared_ptr<const ModalSurface> surface;
     std::vector<double> omega;  ///< (r) natural angular frequencies [rad/s].
     double damping_ratio = 0.0; ///< ζ [-].
     ModalIntegrator integrator = ModalIntegrator::Exact;
-    // State: hashed (q, q_dot) and snapshotted (all three).
+    modal::PlasticParams plastic;    ///< Yield, hardening, limit.
+    double adaptive_tolerance = 0.0; ///< ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
+    /// Each kept mode's relative frequency change from the lattice half as fine, when the lattice was
+    /// chosen for the budget (modal/auto_lattice.h) [-] (r); empty otherwise.
+    std::vector<double> lattice_changes;
+
+    [[nodiscard]] size_t mode_count() const { return omega.size(); }
+    [[nodiscard]] bool adaptive() const { return adaptive_tolerance > 0.0; }
+};
+
+/// Derived from a model and a substep h: what every mode's step needs, made once per (model, h). Shared by
+/// the model's bodies; written only by prepare_modal_substep() on the stepping thread, before the
+/// parallel stages read it, so it needs no lock.
+struct ModalSubstepMaps {
+    double h = 0.0;                     ///< Substep the maps are for [s]; 0 = not made yet.
+    std::vector<modal::ModeStep> exact; ///< (r) per-mode exact maps for h.
+    std::vector<double> sinc;           ///< (r) sinc(ω_k h / 2) of modal_inverse_mass.
+};
+
+/// What identical modal bodies share.
+struct ModalShared {
+    std::shared_ptr<const ModalModel> model;
+    std::shared_ptr<ModalSubstepMaps> maps;
+};
+
+/// State: what the step changes, hashed (q, q_dot; q_plastic and plastic_strain of plastic bodies; active
+/// of adaptive ones) and snapshotted (all).
+struct ModalState {
     std::vector<double> q;          ///< (r) amplitudes [√kg·m].
     std::vector<double> q_dot;      ///< (r) their rates [√kg·m/s]; half a step behind q with
                                     ///< central difference (leapfrog).
@@ -50,40 +81,51 @@ struct ModalBody {
                                     ///< Φ q_p; the elastic part is q − q_p. Zero for elastic bodies.
     double plastic_strain = 0.0;    ///< Accumulated equivalent plastic strain [-] (hardening, limit).
     size_t active = 0; ///< Modes shown on the surface and felt by contact and constraints, the lowest
-                       ///< ones (all unless adaptive); the others still step. State: hashed
-                       ///< (adaptive bodies) and snapshotted.
-    modal::PlasticParams plastic;    ///< Model: yield, hardening, limit.
-    double adaptive_tolerance = 0.0; ///< Model: ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
-    // Diagnostics of adaptive bodies (body_modal_activity); restore keeps them.
+                       ///< ones (all unless adaptive); the others still step.
+};
+
+/// Loads of one substep: added by contact (nodal), constraints (load) and the host (host nodal loads,
+/// per step), consumed and cleared by the ModalUpdate stage.
+struct ModalLoads {
+    std::vector<double> load; ///< (r) constraint generalized forces of this substep, held over it [N/√kg].
+    std::vector<double> nodal_load; ///< (3 × lattice nodes) contact forces of this substep lumped on the
+                                    ///< nodes [N], body frame; projected on the modes once per substep.
+    bool has_nodal_load = false;
+    std::vector<double> host_nodal_load; ///< (3 × nodes) host point loads of this step lumped likewise [N].
+    bool has_host_nodal_load = false;
+    std::vector<double> contact; ///< (r) Φᵀ nodal_load, made by the step: a kick [N/√kg] (scratch).
+};
+
+/// The body's own deformed copy of its rest collider, written by the UpdateSurfaces stage.
+struct DeformedSurface {
+    std::shared_ptr<Collider> collider; ///< This body's collider (BodyModel::collider points to it).
+    std::shared_ptr<SampleSet> samples; ///< The deformed samples it holds.
+    bool stale = false;                 ///< q moved since the samples were last deformed.
+};
+
+/// Diagnostics, written by the step; read by body_modal_activity() and body_modal_accuracy().
+struct ModalStats {
+    // Adaptive bodies; restore keeps them.
     size_t most_active = 0;
     double truncation = 0.0;        ///< Displacement the inactive modes may miss, last substep [m].
     double max_truncation = 0.0;    ///< Its largest value [m].
     double max_lattice_error = 0.0; ///< Largest lattice error estimate of the shown modes [m].
-    /// Model: each kept mode's relative frequency change from the lattice half as fine, when the lattice
-    /// was chosen for the budget (modal/auto_lattice.h) [-] (r); empty otherwise.
-    std::vector<double> lattice_changes;
     uint64_t active_changes = 0;
     double active_mode_substeps = 0.0; ///< Σ over substeps of the active count [-].
-    // Derived and scratch.
-    std::vector<double> load; ///< (r) constraint generalized forces of this substep, held over it [N/√kg].
-    std::vector<double> contact_load; ///< (r) Φᵀ of this substep's contact (nodal) loads, a kick [N/√kg].
-    std::vector<double> nodal_load;   ///< (3 × lattice nodes) contact forces of this substep lumped on the
-                                      ///< nodes [N], body frame; projected on the modes once per substep.
-    bool has_nodal_load = false;
-    std::vector<double> host_nodal_load; ///< (3 × nodes) host point loads of this step lumped likewise [N].
-    bool has_host_nodal_load = false;
-    // Diagnostics of the last substep (accuracy report); cleared by restore.
+    // The last substep (accuracy report); cleared by restore.
     std::vector<double> last_nodal_load; ///< (3 × nodes) the nodal loads F it applied [N], body frame.
     std::vector<double> last_load;       ///< (r) the generalized forces Q it applied [N/√kg].
     bool last_has_load = false;
-    std::shared_ptr<Collider> collider;       ///< This body's collider (BodyModel::collider points to it),
-                                              ///< its samples deformed by UpdateSurfaces.
-    std::shared_ptr<SampleSet> samples;       ///< The deformed samples it holds.
-    bool surface_stale = false;               ///< q moved since the samples were last deformed.
-    double step_h = 0.0;                      ///< Substep the exact step maps below were made for [s].
-    std::vector<modal::ModeStep> exact_steps; ///< (r) per-mode exact maps for step_h.
-    double contact_h = 0.0;                   ///< Substep contact_sinc was made for [s].
-    std::vector<double> contact_sinc;         ///< (r) sinc(ω_k h / 2) of modal_inverse_mass.
+};
+
+/// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
+struct ModalBody {
+    std::shared_ptr<const ModalModel> model; ///< Shared, read-only.
+    std::shared_ptr<ModalSubstepMaps> maps;  ///< Shared with the model's other bodies.
+    ModalState state;
+    ModalLoads loads;
+    DeformedSurface deformed;
+    ModalStats stats;
 };
 
 } // namespace supermodal

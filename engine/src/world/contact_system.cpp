@@ -308,7 +308,7 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
     io.part_point_force.resize(io.part_points.size());
     for (size_t part = 0; part < io.part_points.size(); ++part)
         io.part_point_force[part].resize(io.part_points[part].size());
-    prepare_modal_contact(reg, ctx.h);
+    prepare_modal_substep(reg, ctx.h);
     const Registry& creg = reg;
     for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
         ModalReader reader{&creg, &io.modal_phi[part]};

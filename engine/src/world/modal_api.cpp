@@ -49,13 +49,13 @@ Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const Bo
 const ModalBasis* body_modal_basis(const World& world, Entity e)
 {
     const ModalBody* b = modal_of(world, e);
-    return b ? b->basis.get() : nullptr;
+    return b ? b->model->basis.get() : nullptr;
 }
 
 BodyModalState body_modal_state(const World& world, Entity e)
 {
     const ModalBody* b = modal_of(world, e);
-    return b ? BodyModalState{b->q, b->q_dot} : BodyModalState{};
+    return b ? BodyModalState{b->state.q, b->state.q_dot} : BodyModalState{};
 }
 
 Status set_body_modal_state(World& world, Entity e, std::span<const double> amplitudes,
@@ -68,19 +68,20 @@ Status set_body_modal_state(World& world, Entity e, std::span<const double> ampl
     ModalBody* b = live(world, e) ? w.reg.find<ModalBody>(e) : nullptr;
     if (b == nullptr)
         return Error{"", "modal", "not a modal body"};
-    if (amplitudes.size() != b->q.size() || velocities.size() != b->q.size())
-        return Error{"", "modal", "expected " + std::to_string(b->q.size()) + " amplitudes and rates"};
-    for (size_t k = 0; k < b->q.size(); ++k)
+    ModalState& s = b->state;
+    if (amplitudes.size() != s.q.size() || velocities.size() != s.q.size())
+        return Error{"", "modal", "expected " + std::to_string(s.q.size()) + " amplitudes and rates"};
+    for (size_t k = 0; k < s.q.size(); ++k)
         if (!std::isfinite(amplitudes[k]) || !std::isfinite(velocities[k]))
             return Error{"", "modal", "amplitudes and rates must be finite"};
-    b->q.assign(amplitudes.begin(), amplitudes.end());
-    b->q_dot.assign(velocities.begin(), velocities.end());
+    s.q.assign(amplitudes.begin(), amplitudes.end());
+    s.q_dot.assign(velocities.begin(), velocities.end());
     // An adaptive body activates every mode up to the highest one set.
-    size_t needed = b->active;
-    for (size_t k = b->active; k < b->q.size(); ++k)
-        if (amplitudes[k] != b->q_plastic[k] || velocities[k] != 0.0)
+    size_t needed = s.active;
+    for (size_t k = s.active; k < s.q.size(); ++k)
+        if (amplitudes[k] != s.q_plastic[k] || velocities[k] != 0.0)
             needed = k + 1;
-    if (needed != b->active)
+    if (needed != s.active)
         set_active_modes(*b, needed);
     update_modal_surface(*b);
     return {};
@@ -91,27 +92,29 @@ BodyModalActivity body_modal_activity(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return {};
+    const ModalModel& m = *b->model;
+    const ModalStats& stats = b->stats;
     BodyModalActivity out;
-    out.adaptive = b->adaptive_tolerance > 0.0;
-    out.active_modes = static_cast<int>(b->active);
-    out.most_active_modes = static_cast<int>(b->most_active);
-    out.truncation_estimate = b->truncation;
-    out.max_truncation_estimate = b->max_truncation;
-    out.active_count_changes = b->active_changes;
-    out.active_mode_substeps = b->active_mode_substeps;
-    if (b->collider && b->collider->sampling_tolerance > 0.0) {
-        const SampleDensityChoice& s = b->collider->sampling;
-        out.contact_samples = static_cast<int>(b->collider->samples->samples.size());
+    out.adaptive = m.adaptive();
+    out.active_modes = static_cast<int>(b->state.active);
+    out.most_active_modes = static_cast<int>(stats.most_active);
+    out.truncation_estimate = stats.truncation;
+    out.max_truncation_estimate = stats.max_truncation;
+    out.active_count_changes = stats.active_changes;
+    out.active_mode_substeps = stats.active_mode_substeps;
+    const Collider* collider = b->deformed.collider.get();
+    if (collider != nullptr && collider->sampling_tolerance > 0.0) {
+        const SampleDensityChoice& s = collider->sampling;
+        out.contact_samples = static_cast<int>(collider->samples->samples.size());
         out.sample_spacing = s.spacing;
         out.sampling_gap = s.gap;
         out.sampling_gap_met = s.met;
     }
-    out.lattice_cells = b->basis->cells;
-    if (!b->lattice_changes.empty()) {
-        out.lattice_frequency_change =
-            *std::max_element(b->lattice_changes.begin(), b->lattice_changes.end());
+    out.lattice_cells = m.basis->cells;
+    if (!m.lattice_changes.empty()) {
+        out.lattice_frequency_change = *std::max_element(m.lattice_changes.begin(), m.lattice_changes.end());
         out.lattice_converged = out.lattice_frequency_change <= modal::k_auto_lattice_target;
-        out.lattice_error_estimate = b->max_lattice_error;
+        out.lattice_error_estimate = stats.max_lattice_error;
     }
     return out;
 }
@@ -121,10 +124,12 @@ double body_modal_energy(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return 0.0;
+    const ModalState& s = b->state;
+    const std::vector<double>& omega = b->model->omega;
     double energy = 0.0;
-    for (size_t k = 0; k < b->q.size(); ++k)
-        energy += b->q_dot[k] * b->q_dot[k] +
-                  b->omega[k] * b->omega[k] * (b->q[k] - b->q_plastic[k]) * (b->q[k] - b->q_plastic[k]);
+    for (size_t k = 0; k < s.q.size(); ++k)
+        energy += s.q_dot[k] * s.q_dot[k] +
+                  omega[k] * omega[k] * (s.q[k] - s.q_plastic[k]) * (s.q[k] - s.q_plastic[k]);
     return 0.5 * energy;
 }
 
@@ -133,8 +138,9 @@ BodyPlasticState body_plastic_state(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return {};
-    return {b->q_plastic, b->plastic_strain,
-            b->plastic.yield_stress + b->plastic.hardening * b->plastic_strain};
+    const modal::PlasticParams& p = b->model->plastic;
+    return {b->state.q_plastic, b->state.plastic_strain,
+            p.yield_stress + p.hardening * b->state.plastic_strain};
 }
 
 ModalAccuracy body_modal_accuracy(const World& world, Entity e)
@@ -142,26 +148,27 @@ ModalAccuracy body_modal_accuracy(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return {};
-    const modal::AccuracyModel* model = b->surface->accuracy->get(*b->basis);
+    const ModalModel& m = *b->model;
+    const modal::AccuracyModel* model = m.surface->accuracy->get(*m.basis);
     if (model == nullptr)
         return {};
     modal::AccuracyInput in;
-    in.nodal_force = b->last_nodal_load;
-    in.modal_force = b->last_load;
-    in.q = b->q;
-    in.q_dot = b->q_dot;
-    in.q_plastic = b->q_plastic;
-    in.omega = b->omega;
-    return modal::evaluate_accuracy(*model, *b->basis, in);
+    in.nodal_force = b->stats.last_nodal_load;
+    in.modal_force = b->stats.last_load;
+    in.q = b->state.q;
+    in.q_dot = b->state.q_dot;
+    in.q_plastic = b->state.q_plastic;
+    in.omega = m.omega;
+    return modal::evaluate_accuracy(*model, *m.basis, in);
 }
 
 namespace
 {
-std::vector<double> elastic_part(const ModalBody& b)
+std::vector<double> elastic_part(const ModalState& s)
 {
-    std::vector<double> q(b.q.size());
+    std::vector<double> q(s.q.size());
     for (size_t k = 0; k < q.size(); ++k)
-        q[k] = b.q[k] - b.q_plastic[k];
+        q[k] = s.q[k] - s.q_plastic[k];
     return q;
 }
 } // namespace
@@ -171,10 +178,11 @@ BodyStress body_max_stress(const World& world, Entity e)
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr)
         return {};
-    const modal::StressPeak peak = modal::max_von_mises(*b->surface->stress, elastic_part(*b));
+    const modal::StressModel& stress = *b->model->surface->stress;
+    const modal::StressPeak peak = modal::max_von_mises(stress, elastic_part(b->state));
     if (peak.point < 0)
         return {};
-    return {peak.von_mises, b->surface->stress->points[static_cast<size_t>(peak.point)]};
+    return {peak.von_mises, stress.points[static_cast<size_t>(peak.point)]};
 }
 
 std::array<double, 6> body_stress_at(const World& world, Entity e, const Vec3& point_shape)
@@ -182,7 +190,7 @@ std::array<double, 6> body_stress_at(const World& world, Entity e, const Vec3& p
     const ModalBody* b = modal_of(world, e);
     if (b == nullptr || !is_finite(point_shape))
         return {};
-    return modal::stress_at(*b->basis, point_shape, elastic_part(*b));
+    return modal::stress_at(*b->model->basis, point_shape, elastic_part(b->state));
 }
 
 double von_mises_stress(const std::array<double, 6>& voigt)
@@ -205,7 +213,7 @@ BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_po
     Vec3 rest = local;
     Mat3 forward = Mat3::identity(); // F⁻ᵀ
     if (b != nullptr) {
-        const modal::InverseMap inv = modal::invert_deformation(*b->basis, b->q, local);
+        const modal::InverseMap inv = modal::invert_deformation(*b->model->basis, b->state.q, local);
         if (!inv.converged)
             return out;
         rest = inv.rest_point;
@@ -234,8 +242,8 @@ Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
     const Pose& p = w.reg.get<Pose>(e);
     const Vec3 com = w.reg.get<BodyModel>(e).mass.center_of_mass;
     Vec3 local = point_shape - com;
-    if (w.reg.has<ModalBody>(e))
-        local += modal_displacement(*w.reg.get<ModalBody>(e).basis, point_shape, w.reg.get<ModalBody>(e).q);
+    if (const ModalBody* b = w.reg.find<ModalBody>(e))
+        local += modal_displacement(*b->model->basis, point_shape, b->state.q);
     return p.position + rotate(p.orientation, local);
 }
 

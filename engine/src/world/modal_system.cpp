@@ -61,25 +61,67 @@ std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider>
     return surface;
 }
 
-std::shared_ptr<const ModalSurface> surface_for(World::Impl& w, const std::shared_ptr<const Collider>& rest,
-                                                const std::shared_ptr<const ModalBasis>& basis)
+std::shared_ptr<const ModalModel> make_model(std::shared_ptr<const ModalSurface> surface,
+                                             const modal::LatticeChoice& choice, const BodyDef& def)
 {
-    for (const auto& s : w.modal_surfaces)
-        if (s->rest == rest && s->basis == basis)
+    auto model = std::make_shared<ModalModel>();
+    const ModalBasis& basis = *choice.basis;
+    const size_t r = static_cast<size_t>(basis.mode_count);
+    model->omega.resize(r);
+    for (size_t k = 0; k < r; ++k)
+        model->omega[k] = 2.0 * std::numbers::pi * basis.frequencies_hz[k];
+    model->damping_ratio = def.modal.damping_ratio;
+    model->integrator = def.modal.integrator;
+    model->plastic.yield_stress = def.modal.yield_stress;
+    model->plastic.hardening = def.modal.hardening;
+    model->plastic.max_plastic_strain = def.modal.max_plastic_strain;
+    model->adaptive_tolerance = def.modal.adaptive_tolerance;
+    model->lattice_changes = choice.frequency_changes;
+    model->surface = std::move(surface);
+    model->basis = choice.basis;
+    return model;
+}
+
+// Whether a body made from `def` with `choice` on `rest` steps exactly as model m (omega follows the basis).
+bool same_model(const ModalModel& m, const std::shared_ptr<const Collider>& rest,
+                const modal::LatticeChoice& choice, const BodyDef& def)
+{
+    return m.basis == choice.basis && m.surface->rest == rest && m.damping_ratio == def.modal.damping_ratio &&
+           m.integrator == def.modal.integrator && m.plastic.yield_stress == def.modal.yield_stress &&
+           m.plastic.hardening == def.modal.hardening &&
+           m.plastic.max_plastic_strain == def.modal.max_plastic_strain &&
+           m.adaptive_tolerance == def.modal.adaptive_tolerance &&
+           m.lattice_changes == choice.frequency_changes;
+}
+
+// The world's model for a body, made on first use: identical bodies share it (and its substep maps), as
+// they share colliders; bodies that differ only in their ModalBodyDef share the surface.
+ModalShared shared_for(World::Impl& w, const std::shared_ptr<const Collider>& rest,
+                       const modal::LatticeChoice& choice, const BodyDef& def)
+{
+    std::shared_ptr<const ModalSurface> surface;
+    for (const ModalShared& s : w.modal_models) {
+        if (same_model(*s.model, rest, choice, def))
             return s;
-    w.modal_surfaces.push_back(make_surface(rest, basis));
-    return w.modal_surfaces.back();
+        if (s.model->surface->rest == rest && s.model->surface->basis == choice.basis)
+            surface = s.model->surface;
+    }
+    if (surface == nullptr)
+        surface = make_surface(rest, choice.basis);
+    w.modal_models.push_back(
+        {make_model(std::move(surface), choice, def), std::make_shared<ModalSubstepMaps>()});
+    return w.modal_models.back();
 }
 
 // Q_k += φ_k(x_local) · Rᵀ f: the lattice field at the point, projected on the body-frame force.
-void add_load(const ModalBody& b, const BodyModel& m, const Pose& p, const Vec3& x, const Vec3& f,
+void add_load(const ModalModel& model, const BodyModel& m, const Pose& p, const Vec3& x, const Vec3& f,
               std::vector<double>& io_q)
 {
     const Vec3 local = inv_rotate(p.orientation, x - p.position) + m.mass.center_of_mass;
     const Vec3 fl = inv_rotate(p.orientation, f);
     if (!is_finite(local) || !is_finite(fl))
         return;
-    const ModalBasis& basis = *b.basis;
+    const ModalBasis& basis = *model.basis;
     const size_t r = static_cast<size_t>(basis.mode_count);
     const LatticeWeights lw = modal_weights(basis, local);
     for (int j = 0; j < lw.count; ++j) {
@@ -91,14 +133,14 @@ void add_load(const ModalBody& b, const BodyModel& m, const Pose& p, const Vec3&
 }
 
 // f [N] at world point x lumped on the lattice nodes of x's cell, body frame: F_node += w_node Rᵀf.
-bool lump_load(const ModalBody& b, const BodyModel& m, const Pose& p, const Vec3& x, const Vec3& f,
+bool lump_load(const ModalModel& model, const BodyModel& m, const Pose& p, const Vec3& x, const Vec3& f,
                std::vector<double>& io_nodal)
 {
     const Vec3 local = inv_rotate(p.orientation, x - p.position) + m.mass.center_of_mass;
     const Vec3 fl = inv_rotate(p.orientation, f);
     if (!is_finite(local) || !is_finite(fl))
         return false;
-    const LatticeWeights lw = modal_weights(*b.basis, local);
+    const LatticeWeights lw = modal_weights(*model.basis, local);
     for (int j = 0; j < lw.count; ++j) {
         double* out = &io_nodal[static_cast<size_t>(lw.nodes[j]) * 3];
         out[0] += lw.weights[j] * fl.x;
@@ -142,53 +184,44 @@ Result<modal::LatticeChoice> find_or_build_modal_basis(World::Impl& w, const Bod
 
 void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& choice, const BodyDef& def)
 {
-    std::shared_ptr<const ModalBasis> basis = choice.basis;
     BodyModel& m = w.reg.get<BodyModel>(e);
+    const ModalShared shared = shared_for(w, m.collider, choice, def);
+    const size_t r = shared.model->mode_count();
+    const size_t nodal = shared.model->basis->node_positions.size() * 3;
     ModalBody b;
-    const size_t r = static_cast<size_t>(basis->mode_count);
-    b.omega.resize(r);
-    for (size_t k = 0; k < r; ++k)
-        b.omega[k] = 2.0 * std::numbers::pi * basis->frequencies_hz[k];
-    b.damping_ratio = def.modal.damping_ratio;
-    b.integrator = def.modal.integrator;
-    b.q.assign(r, 0.0);
-    b.q_dot.assign(r, 0.0);
-    b.host_force.assign(r, 0.0);
-    b.load.assign(r, 0.0);
-    b.nodal_load.assign(basis->node_positions.size() * 3, 0.0);
-    b.host_nodal_load.assign(b.nodal_load.size(), 0.0);
-    b.last_nodal_load.assign(b.nodal_load.size(), 0.0);
-    b.last_load.assign(r, 0.0);
-    b.q_plastic.assign(r, 0.0);
-    b.plastic.yield_stress = def.modal.yield_stress;
-    b.plastic.hardening = def.modal.hardening;
-    b.plastic.max_plastic_strain = def.modal.max_plastic_strain;
-    b.surface = surface_for(w, m.collider, basis);
-    b.basis = std::move(basis);
+    b.model = shared.model;
+    b.maps = shared.maps;
+    b.state.q.assign(r, 0.0);
+    b.state.q_dot.assign(r, 0.0);
+    b.state.host_force.assign(r, 0.0);
+    b.state.q_plastic.assign(r, 0.0);
+    b.state.active = b.model->adaptive() ? 0 : r; // adaptive bodies start rigid
+    b.loads.load.assign(r, 0.0);
+    b.loads.nodal_load.assign(nodal, 0.0);
+    b.loads.host_nodal_load.assign(nodal, 0.0);
+    b.stats.last_nodal_load.assign(nodal, 0.0);
+    b.stats.last_load.assign(r, 0.0);
+    b.stats.most_active = b.state.active;
     // Its own collider and samples: the deformed surface belongs to this body alone. The rest shape's
     // support point would ignore the deformation, so the body counts as non-convex (samples only).
-    b.samples = std::make_shared<SampleSet>(*m.collider->samples);
-    b.collider = std::make_shared<Collider>(*m.collider);
-    b.collider->samples = b.samples;
-    b.collider->convex = false;
-    b.adaptive_tolerance = def.modal.adaptive_tolerance;
-    b.lattice_changes = choice.frequency_changes;
-    b.active = b.adaptive_tolerance > 0.0 ? 0 : r; // adaptive bodies start rigid
-    b.most_active = b.active;
+    b.deformed.samples = std::make_shared<SampleSet>(*m.collider->samples);
+    b.deformed.collider = std::make_shared<Collider>(*m.collider);
+    b.deformed.collider->samples = b.deformed.samples;
+    b.deformed.collider->convex = false;
     // Adaptive bodies too: swapping to the rest collider (support-map contact) while rigid changed the
     // strike itself: the 2x4 board of ball_on_board bent 18% less when its contact path switched as
     // the ball struck (measured against the all-modes board, docs/modal.md "Adaptive modes").
-    m.collider = b.collider;
+    m.collider = b.deformed.collider;
     w.reg.emplace(e, std::move(b));
 }
 
 void set_active_modes(ModalBody& b, size_t active)
 {
-    if (active != b.active)
-        ++b.active_changes;
-    b.active = std::min(active, b.q.size());
-    b.most_active = std::max(b.most_active, b.active);
-    b.surface_stale = true;
+    if (active != b.state.active)
+        ++b.stats.active_changes;
+    b.state.active = std::min(active, b.state.q.size());
+    b.stats.most_active = std::max(b.stats.most_active, b.state.active);
+    b.deformed.stale = true;
 }
 
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
@@ -198,30 +231,38 @@ void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, cons
     ModalBody* b = reg.find<ModalBody>(e);
     if (b == nullptr)
         return;
-    if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->nodal_load))
-        b->has_nodal_load = true;
+    if (lump_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
+                  b->loads.nodal_load))
+        b->loads.has_nodal_load = true;
 }
 
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
 {
     if (ModalBody* b = reg.find<ModalBody>(e)) {
-        add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force, b->host_force);
+        add_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
+                 b->state.host_force);
         // Also lumped, for the accuracy report's F (the projection above keeps the exact point's field).
-        if (lump_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
-                      b->host_nodal_load))
-            b->has_host_nodal_load = true;
+        if (lump_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
+                      b->loads.host_nodal_load))
+            b->loads.has_host_nodal_load = true;
     }
 }
 
-void prepare_modal_contact(Registry& reg, double h)
+void prepare_modal_substep(Registry& reg, double h)
 {
+    // The first body of each model makes them; the others find them made.
     reg.each<ModalBody>([&](Entity, ModalBody& b) {
-        if (b.contact_h == h)
+        ModalSubstepMaps& maps = *b.maps;
+        if (maps.h == h)
             return;
-        b.contact_sinc.resize(b.omega.size());
-        for (size_t k = 0; k < b.omega.size(); ++k)
-            b.contact_sinc[k] = modal::half_step_sinc(b.omega[k], h);
-        b.contact_h = h;
+        const ModalModel& m = *b.model;
+        maps.exact.resize(m.mode_count());
+        maps.sinc.resize(m.mode_count());
+        for (size_t k = 0; k < m.mode_count(); ++k) {
+            maps.exact[k] = modal::exact_mode_step(m.omega[k], m.damping_ratio, h);
+            maps.sinc[k] = modal::half_step_sinc(m.omega[k], h);
+        }
+        maps.h = h;
     });
 }
 
@@ -237,10 +278,11 @@ double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point
     const Vec3 dl = inv_rotate(p.orientation, d);
     if (!is_finite(local) || !is_finite(dl))
         return 0.0;
-    const ModalBasis& basis = *b->basis;
+    const ModalBasis& basis = *b->model->basis;
     const size_t r = static_cast<size_t>(basis.mode_count);
     const LatticeWeights lw = modal_weights(basis, local);
-    SM_ASSERT(b->contact_sinc.size() == r, "prepare_modal_contact() runs before the contact forces");
+    const std::vector<double>& sincs = b->maps->sinc;
+    SM_ASSERT(sincs.size() == r, "prepare_modal_substep() runs before the contact forces");
     // φ_k at the point for every k, nodes outer (rows of mode_shapes are contiguous): per k the same sum
     // in the same order as node by node.
     std::vector<double>& phi = scratch_phi; // per thread: a full body has more than k_max_modes
@@ -256,7 +298,7 @@ double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point
     // body's contact forces do not change with its active count (only what the modes do with them).
     for (size_t k = 0; k < r; ++k) {
         const Vec3 phi_k{phi[k], phi[r + k], phi[2 * r + k]};
-        const double sinc = b->contact_sinc[k];
+        const double sinc = sincs[k];
         sum += (d == Vec3{} ? dot(phi_k, phi_k) : dot(phi_k, dl) * dot(phi_k, dl)) * sinc * sinc;
     }
     return sum;
@@ -265,7 +307,7 @@ double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point
 void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, const Vec3& impulse)
 {
     if (ModalBody* b = reg.find<ModalBody>(e))
-        add_load(*b, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, impulse, b->q_dot);
+        add_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, impulse, b->state.q_dot);
 }
 
 namespace
@@ -274,62 +316,67 @@ namespace
 constexpr uint8_t k_switched = 1;   // central difference was unstable for some modes, stepped exactly
 constexpr uint8_t k_non_finite = 2; // amplitudes turned NaN/Inf: reset to rest
 
-// One modal body's amplitudes over h [s] under this substep's loads; returns k_switched / k_non_finite.
-uint8_t step_modal_body(double h, ModalBody& b)
+// This substep's contact nodal loads projected on the modes (Q_c = Φᵀ F, into io.contact), and the
+// accuracy report's loads: F (contact and host) into stats.last_nodal_load, and Q, what each mode is
+// driven with, into stats.last_load.
+void project_loads(const ModalModel& m, const ModalState& s, ModalLoads& io, ModalStats& stats)
 {
-    uint8_t flags = 0;
-    const size_t r = b.q.size();
-    if (b.step_h != h) {
-        b.exact_steps.resize(r);
-        for (size_t k = 0; k < r; ++k)
-            b.exact_steps[k] = modal::exact_mode_step(b.omega[k], b.damping_ratio, h);
-        b.step_h = h;
-    }
+    const size_t r = m.mode_count();
     // The last substep's nodal loads stay for the accuracy report: swap instead of clearing.
-    if (b.last_has_load)
-        std::fill(b.last_nodal_load.begin(), b.last_nodal_load.end(), 0.0);
-    b.last_has_load = b.has_nodal_load || b.has_host_nodal_load;
+    if (stats.last_has_load)
+        std::fill(stats.last_nodal_load.begin(), stats.last_nodal_load.end(), 0.0);
+    stats.last_has_load = io.has_nodal_load || io.has_host_nodal_load;
     // Contact loads apart from the held ones (constraints, host): they are stepped as a kick.
-    b.contact_load.assign(r, 0.0);
-    if (b.has_nodal_load) {
+    io.contact.assign(r, 0.0);
+    if (io.has_nodal_load) {
         // Q = Φᵀ f over the nodes that carry load.
-        const double* phi = b.basis->mode_shapes.data();
-        for (size_t i = 0; i < b.nodal_load.size(); ++i, phi += r) {
-            const double f = b.nodal_load[i];
+        const double* phi = m.basis->mode_shapes.data();
+        for (size_t i = 0; i < io.nodal_load.size(); ++i, phi += r) {
+            const double f = io.nodal_load[i];
             if (f == 0.0)
                 continue;
             for (size_t k = 0; k < r; ++k)
-                b.contact_load[k] += phi[k] * f;
+                io.contact[k] += phi[k] * f;
         }
-        std::swap(b.nodal_load, b.last_nodal_load); // last_nodal_load was zero, so nodal_load is now
-        b.has_nodal_load = false;
+        std::swap(io.nodal_load, stats.last_nodal_load); // last_nodal_load was zero, so nodal_load is now
+        io.has_nodal_load = false;
     }
-    if (b.has_host_nodal_load)
-        for (size_t i = 0; i < b.last_nodal_load.size(); ++i)
-            b.last_nodal_load[i] += b.host_nodal_load[i];
+    if (io.has_host_nodal_load)
+        for (size_t i = 0; i < stats.last_nodal_load.size(); ++i)
+            stats.last_nodal_load[i] += io.host_nodal_load[i];
     for (size_t k = 0; k < r; ++k)
-        b.last_load[k] = (b.load[k] + b.contact_load[k]) + b.host_force[k];
-    if (b.adaptive_tolerance > 0.0) {
-        const modal::ActiveChoice choice = modal::choose_active_modes(b, b.last_load);
-        if (choice.active != b.active)
-            set_active_modes(b, choice.active);
-        b.truncation = choice.truncation;
-        b.max_truncation = std::max(b.max_truncation, choice.truncation);
-        b.max_lattice_error = std::max(b.max_lattice_error, choice.lattice_error);
-        b.active_mode_substeps += static_cast<double>(b.active);
-    }
-    // Every mode steps, active or not: an inactive one is only hidden from the surface, so it joins
-    // with the motion its loads gave it instead of missing the start of a strike.
+        stats.last_load[k] = (io.load[k] + io.contact[k]) + s.host_force[k];
+}
+
+// An adaptive body's active count for this substep's loads, and what that leaves out.
+void choose_active(ModalBody& b)
+{
+    const modal::ActiveChoice choice = modal::choose_active_modes(*b.model, b.state, b.stats.last_load);
+    if (choice.active != b.state.active)
+        set_active_modes(b, choice.active);
+    ModalStats& stats = b.stats;
+    stats.truncation = choice.truncation;
+    stats.max_truncation = std::max(stats.max_truncation, choice.truncation);
+    stats.max_lattice_error = std::max(stats.max_lattice_error, choice.lattice_error);
+    stats.active_mode_substeps += static_cast<double>(b.state.active);
+}
+
+// Every mode over h [s] under `force` (r, [N/√kg]: held loads plus the contact kick loads.contact); returns
+// whether central difference was unstable for some mode (stepped exactly instead). Every mode steps, active
+// or not: an inactive one is only hidden from the surface, so it joins with the motion its loads gave it
+// instead of missing the start of a strike.
+bool integrate_modes(const ModalModel& m, const ModalSubstepMaps& maps, double h, const ModalLoads& loads,
+                     std::span<const double> force, ModalState& s)
+{
     bool switched = false;
-    for (size_t k = 0; k < r; ++k) {
-        const double force = b.last_load[k];
+    for (size_t k = 0; k < m.mode_count(); ++k) {
         // The modes spring back to the (plastically moved) rest shape: step the elastic part q − q_p.
         // For an elastic body q_p = 0 and this is q itself, bit for bit.
-        double elastic = b.q[k] - b.q_plastic[k];
-        if (b.integrator == ModalIntegrator::CentralDifference) {
-            if (b.omega[k] * h < modal::k_central_difference_limit) {
-                modal::central_difference_step(b.omega[k], b.damping_ratio, h, force, elastic, b.q_dot[k]);
-                b.q[k] = elastic + b.q_plastic[k];
+        double elastic = s.q[k] - s.q_plastic[k];
+        if (m.integrator == ModalIntegrator::CentralDifference) {
+            if (m.omega[k] * h < modal::k_central_difference_limit) {
+                modal::central_difference_step(m.omega[k], m.damping_ratio, h, force[k], elastic, s.q_dot[k]);
+                s.q[k] = elastic + s.q_plastic[k];
                 continue;
             }
             switched = true;
@@ -341,31 +388,49 @@ uint8_t step_modal_body(double h, ModalBody& b)
         // host forces: piecewise constant by contract): symplectic, and with contact taken at q_n
         // the same trajectory as half-kick / flow / half-kick. Stiffer modes keep the held map,
         // whose quasi-static response a kick would overshoot (docs/modal.md "Integrators").
-        double held = force;
-        if (b.contact_load[k] != 0.0) {
-            const double gain = modal::contact_kick_gain(b.omega[k], h);
+        double held = force[k];
+        if (loads.contact[k] != 0.0) {
+            const double gain = modal::contact_kick_gain(m.omega[k], h);
             if (gain > 0.0) {
-                b.q_dot[k] += gain * h * b.contact_load[k];
-                held = b.load[k] + b.host_force[k];
+                s.q_dot[k] += gain * h * loads.contact[k];
+                held = loads.load[k] + s.host_force[k];
             }
         }
-        modal::apply_mode_step(b.exact_steps[k], held, elastic, b.q_dot[k]);
-        b.q[k] = elastic + b.q_plastic[k];
+        modal::apply_mode_step(maps.exact[k], held, elastic, s.q_dot[k]);
+        s.q[k] = elastic + s.q_plastic[k];
     }
-    if (switched)
+    return switched;
+}
+
+// A fault stays in this body's deformation: back to the rest shape. Returns whether it was needed.
+bool reset_non_finite(ModalState& s)
+{
+    if (all_finite(s.q) && all_finite(s.q_dot) && all_finite(s.q_plastic))
+        return false;
+    std::fill(s.q.begin(), s.q.end(), 0.0);
+    std::fill(s.q_dot.begin(), s.q_dot.end(), 0.0);
+    std::fill(s.q_plastic.begin(), s.q_plastic.end(), 0.0);
+    return true;
+}
+
+// One modal body's amplitudes over h [s] under this substep's loads; returns k_switched / k_non_finite.
+// Reads the shared model and maps; writes only the body's own state, loads, statistics and stale flag.
+uint8_t step_modal_body(double h, ModalBody& b)
+{
+    const ModalModel& m = *b.model;
+    project_loads(m, b.state, b.loads, b.stats);
+    if (m.adaptive())
+        choose_active(b);
+    uint8_t flags = 0;
+    if (integrate_modes(m, *b.maps, h, b.loads, b.stats.last_load, b.state))
         flags |= k_switched;
-    if (b.plastic.plastic())
-        modal::relieve_plastic(*b.surface->stress, b.plastic, b.basis->young, b.q, b.q_plastic,
-                               b.plastic_strain);
-    if (!all_finite(b.q) || !all_finite(b.q_dot) || !all_finite(b.q_plastic)) {
-        // A fault stays in this body's deformation: back to the rest shape.
-        std::fill(b.q.begin(), b.q.end(), 0.0);
-        std::fill(b.q_dot.begin(), b.q_dot.end(), 0.0);
-        std::fill(b.q_plastic.begin(), b.q_plastic.end(), 0.0);
+    if (m.plastic.plastic())
+        modal::relieve_plastic(*m.surface->stress, m.plastic, m.basis->young, b.state.q, b.state.q_plastic,
+                               b.state.plastic_strain);
+    if (reset_non_finite(b.state))
         flags |= k_non_finite;
-    }
-    std::fill(b.load.begin(), b.load.end(), 0.0);
-    b.surface_stale = true;
+    std::fill(b.loads.load.begin(), b.loads.load.end(), 0.0);
+    b.deformed.stale = true;
     return flags;
 }
 
@@ -374,8 +439,10 @@ uint8_t step_modal_body(double h, ModalBody& b)
 void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg,
                          StepWarnings& io_warnings)
 {
-    // Each body on any thread writes only its own amplitudes and a flag byte; the counts and the fault
-    // log follow on this thread in store order, so neither depends on threads.
+    // The shared maps first, on this thread. Then each body on any thread writes only its own amplitudes
+    // and a flag byte; the counts and the fault log follow on this thread in store order, so neither
+    // depends on threads.
+    prepare_modal_substep(reg, ctx.h);
     std::vector<ModalBody>& bodies = reg.store<ModalBody>().values();
     std::vector<uint8_t> flags(bodies.size(), 0);
     par.for_parts(bodies.size(), 1, [&](size_t, size_t begin, size_t end) {
@@ -396,17 +463,19 @@ void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& 
 
 void update_modal_surface(ModalBody& b)
 {
-    const size_t r = b.q.size();
-    const SampleSet& rest = *b.surface->rest->samples;
-    SampleSet& out = *b.samples;
-    const double* d = b.surface->sample_modes.data();
+    const ModalSurface& surface = *b.model->surface;
+    const std::vector<double>& q = b.state.q;
+    const size_t r = q.size();
+    const SampleSet& rest = *surface.rest->samples;
+    SampleSet& out = *b.deformed.samples;
+    const double* d = surface.sample_modes.data();
     double max_u2 = 0.0;
     for (size_t i = 0; i < rest.samples.size(); ++i, d += 3 * r) {
         Vec3 u{};
-        for (size_t k = 0; k < b.active; ++k) { // the others are hidden
-            u.x += d[k] * b.q[k];
-            u.y += d[r + k] * b.q[k];
-            u.z += d[2 * r + k] * b.q[k];
+        for (size_t k = 0; k < b.state.active; ++k) { // the others are hidden
+            u.x += d[k] * q[k];
+            u.y += d[r + k] * q[k];
+            u.z += d[2 * r + k] * q[k];
         }
         out.samples[i].point = rest.samples[i].point + u;
         max_u2 = std::max(max_u2, dot(u, u));
@@ -422,9 +491,10 @@ void update_modal_surface(ModalBody& b)
         out.bucket_box[bucket] = box;
     }
     const double grow = std::sqrt(max_u2);
-    const Aabb& rest_box = b.surface->rest->local_box;
-    b.collider->local_box = {rest_box.min - Vec3{grow, grow, grow}, rest_box.max + Vec3{grow, grow, grow}};
-    b.surface_stale = false;
+    const Aabb& rest_box = surface.rest->local_box;
+    b.deformed.collider->local_box = {rest_box.min - Vec3{grow, grow, grow},
+                                      rest_box.max + Vec3{grow, grow, grow}};
+    b.deformed.stale = false;
 }
 
 void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs)
@@ -435,8 +505,8 @@ void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const B
     std::vector<ModalBody*> stale;
     for (const BodyPair& pair : pairs)
         for (Entity e : {pair.a, pair.b})
-            if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->surface_stale) {
-                b->surface_stale = false;
+            if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->deformed.stale) {
+                b->deformed.stale = false;
                 stale.push_back(b);
             }
     par.for_parts(stale.size(), 1, [&](size_t, size_t begin, size_t end) {
@@ -448,10 +518,10 @@ void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const B
 void clear_modal_forces(Registry& reg)
 {
     for (ModalBody& b : reg.store<ModalBody>().values()) {
-        std::fill(b.host_force.begin(), b.host_force.end(), 0.0);
-        if (b.has_host_nodal_load)
-            std::fill(b.host_nodal_load.begin(), b.host_nodal_load.end(), 0.0);
-        b.has_host_nodal_load = false;
+        std::fill(b.state.host_force.begin(), b.state.host_force.end(), 0.0);
+        if (b.loads.has_host_nodal_load)
+            std::fill(b.loads.host_nodal_load.begin(), b.loads.host_nodal_load.end(), 0.0);
+        b.loads.has_host_nodal_load = false;
     }
 }
 

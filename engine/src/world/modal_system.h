@@ -24,7 +24,8 @@ class Parallel;
 /// tolerance > 0) with an automatic lattice gets the lattice modal::choose_lattice() settles on; for
 /// the others frequency_change stays −1.
 [[nodiscard]] Result<modal::LatticeChoice> find_or_build_modal_basis(World::Impl& w, const BodyDef& def);
-/// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest.
+/// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest, sharing the world's
+/// ModalModel for identical bodies (same basis, rest collider and ModalBodyDef).
 void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& choice, const BodyDef& def);
 
 /// Sets how many of an adaptive body's lowest modes its surface shows (the others keep stepping, hidden).
@@ -35,16 +36,18 @@ void set_active_modes(ModalBody& b, size_t active);
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
 /// The same into the host forces held for the next step (apply_force).
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
-/// Makes every modal body's sinc(ω_k h / 2) for substep h [s], before contact reads them in parallel.
-void prepare_modal_contact(Registry& reg, double h);
+/// Makes the substep maps (exact step maps, sinc(ω_k h / 2)) of every modal body's model for substep h [s],
+/// unless made for h already. On the stepping thread, before contact or the modal update read them in
+/// parallel (the maps are shared by the bodies of a model).
+void prepare_modal_substep(Registry& reg, double h);
 /// What the modes add to a body's inverse mass at a world point for a push along unit world direction d
-/// held over the substep h [s] of the last prepare_modal_contact(): Σ_k (φ_k(x_local) · Rᵀd)² · sinc²(ω_k h /
+/// held over the substep h [s] of the last prepare_modal_substep(): Σ_k (φ_k(x_local) · Rᵀd)² · sinc²(ω_k h /
 /// 2) [1/kg] (for d = 0 the bound over directions, |φ_k|² in place of (φ_k · Rᵀd)²). The sinc² factor is how
 /// far mode k moves under a force held for h, relative to a free mass (1 for ω_k h → 0, 4/(ω_k h)² for a
 /// stiff mode, which only deflects statically). Contact springs are tuned on the inverse mass: without this a
 /// soft body's light surface makes the explicit contact coupling unstable (measured: a soft sphere bounced
 /// above its drop height). 0 for rigid bodies. Reads only (any thread may call it, each with its own
-/// scratch_phi); the sinc² factors come from prepare_modal_contact().
+/// scratch_phi); the sinc² factors come from prepare_modal_substep().
 [[nodiscard]] double modal_inverse_mass(const Registry& reg, Entity e, const Vec3& world_point, const Vec3& d,
                                         std::vector<double>& scratch_phi);
 /// An impulse J [N·s] at a world point changes the rates at once: q̇ += φ(x_local)ᵀ Rᵀ J.

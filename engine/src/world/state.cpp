@@ -127,10 +127,10 @@ struct Reader {
 void after_restore(World::Impl& w)
 {
     for (ModalBody& b : w.reg.store<ModalBody>().values()) {
-        b.most_active = std::max(b.most_active, b.active);
-        std::fill(b.last_nodal_load.begin(), b.last_nodal_load.end(), 0.0);
-        std::fill(b.last_load.begin(), b.last_load.end(), 0.0);
-        b.last_has_load = false;
+        b.stats.most_active = std::max(b.stats.most_active, b.state.active);
+        std::fill(b.stats.last_nodal_load.begin(), b.stats.last_nodal_load.end(), 0.0);
+        std::fill(b.stats.last_load.begin(), b.stats.last_load.end(), 0.0);
+        b.stats.last_has_load = false;
         update_modal_surface(b);
     }
 }

@@ -64,27 +64,28 @@ void visit_each(V& v, const std::vector<Entity>& live, const char* mismatch, Fie
     }
 }
 
-template <class V, class M> void visit_modal(V& v, M& b)
+/// A modal body's state (ModalState); which fields are hashed depends on its model.
+template <class V, class S> void visit_modal(V& v, S& s, const ModalModel& m)
 {
-    const size_t r = b.q.size();
+    const size_t r = s.q.size();
     uint64_t modes = r;
     v.integer(modes, Field::Saved);
     if (!v.check(modes == r, "corrupt snapshot: a modal body's mode count differs"))
         return;
     for (size_t k = 0; k < r; ++k) {
-        v.real(b.q[k], Field::Hashed);
-        v.real(b.q_dot[k], Field::Hashed);
+        v.real(s.q[k], Field::Hashed);
+        v.real(s.q_dot[k], Field::Hashed);
     }
     for (size_t k = 0; k < r; ++k)
-        v.real(b.host_force[k], Field::Saved);
+        v.real(s.host_force[k], Field::Saved);
     // Elastic bodies keep the hash they had before plasticity existed; bodies that step every mode, the
     // one from before adaptive modes.
-    const Field plastic = b.plastic.plastic() ? Field::Hashed : Field::Saved;
+    const Field plastic = m.plastic.plastic() ? Field::Hashed : Field::Saved;
     for (size_t k = 0; k < r; ++k)
-        v.real(b.q_plastic[k], plastic);
-    v.real(b.plastic_strain, plastic);
-    v.integer(b.active, b.adaptive_tolerance > 0.0 ? Field::Hashed : Field::Saved);
-    v.check(b.active <= r, "corrupt snapshot: an active mode count is out of range");
+        v.real(s.q_plastic[k], plastic);
+    v.real(s.plastic_strain, plastic);
+    v.integer(s.active, m.adaptive() ? Field::Hashed : Field::Saved);
+    v.check(s.active <= r, "corrupt snapshot: an active mode count is out of range");
 }
 
 template <class V, class W> void visit_bodies(V& v, W& w)
@@ -107,7 +108,7 @@ template <class V, class W> void visit_bodies(V& v, W& w)
         visit_vec3(v, force.force, Field::Saved);
         visit_vec3(v, force.torque, Field::Saved);
         if (auto* b = w.reg.template find<ModalBody>(e))
-            visit_modal(v, *b);
+            visit_modal(v, b->state, *b->model);
     });
 }
 

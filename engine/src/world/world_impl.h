@@ -24,8 +24,9 @@ struct World::Impl {
     ContactWorld contact;                                   ///< Friction anchors (state) and contact scratch.
     std::vector<std::shared_ptr<const Collider>> colliders; ///< Model: one per distinct shape.
     std::shared_ptr<ModalBasisCache> modal_bases; ///< Model: one basis per distinct modal def (maybe shared).
-    std::vector<std::shared_ptr<const ModalSurface>> modal_surfaces; ///< Model: per (collider, basis).
-    StepListenerFn step_listener = nullptr;                          ///< Host hook before each step, or null.
+    std::vector<ModalShared>
+        modal_models; ///< Model: per distinct modal body (basis, collider, ModalBodyDef).
+    StepListenerFn step_listener = nullptr; ///< Host hook before each step, or null.
     void* step_listener_data = nullptr;
     bool locked = false;               ///< True inside step(): mutations assert.
     std::shared_ptr<TaskSystem> tasks; ///< The host's task system, the built-in pool, or null (one thread).
