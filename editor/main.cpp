@@ -19,59 +19,55 @@ constexpr int k_exit_ok = 0;
 constexpr int k_exit_failed = 1;
 constexpr int k_exit_bad_input = 2;
 
-} // namespace
-
-int main(int argc, char** argv)
-{
-    CLI::App app{"supermodal-editor: edit superquadric scenes; --headless runs a script of actions"};
+/// The command line.
+struct EditorArgs {
     bool headless = false;
     std::string script, screenshot, scene;
     std::vector<int> size{1280, 720};
     bool quiet = false;
-    app.add_flag("--headless", headless, "No window: run --script and exit");
-    app.add_option("--script", script, "Actions to run (JSON, docs/editor.md)")->check(CLI::ExistingFile);
-    app.add_option("--screenshot", screenshot, "PNG of the editor after the script");
-    app.add_option("--size", size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
-    app.add_option("scene", scene, "Scene to load first (format v1)");
-    app.add_flag("-q,--quiet", quiet, "No per-action log");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? k_exit_ok : k_exit_bad_input;
-    }
-    using namespace supermodal::editor;
-    if (!headless && !display_available()) {
-        // No display: a script still runs headless; without one there is nothing to do.
-        if (script.empty()) {
+};
+
+/// Without a display a script still runs headless; with neither there is nothing to do. -1 to go on,
+/// else the exit status (the message printed).
+int choose_mode(EditorArgs& a)
+{
+    if (!a.headless && !supermodal::editor::display_available()) {
+        if (a.script.empty()) {
             std::cerr << "supermodal-editor: no display ($DISPLAY and $WAYLAND_DISPLAY are unset), so no "
                          "window; use --headless --script actions.json [--screenshot out.png]\n";
             return k_exit_bad_input;
         }
         std::cerr << "supermodal-editor: no display ($DISPLAY and $WAYLAND_DISPLAY are unset): running "
                      "the script headless\n";
-        headless = true;
+        a.headless = true;
     }
-    if (headless && script.empty() && scene.empty()) {
+    if (a.headless && a.script.empty() && a.scene.empty()) {
         std::cerr << "supermodal-editor: --headless needs --script actions.json (or a scene)\n";
         return k_exit_bad_input;
     }
+    return -1;
+}
 
+/// Loads the scene, runs the script, then opens the window or writes the screenshot.
+int run_editor(const EditorArgs& a)
+{
+    using namespace supermodal::editor;
     EditorSession session;
-    EditorUi ui(session, size[0], size[1]);
-    if (!scene.empty())
-        if (supermodal::Status status = session.load(scene); !status) {
+    EditorUi ui(session, a.size[0], a.size[1]);
+    if (!a.scene.empty())
+        if (supermodal::Status status = session.load(a.scene); !status) {
             std::cerr << status.error().message() << "\n";
             return k_exit_bad_input;
         }
-    if (!script.empty()) {
+    if (!a.script.empty()) {
         std::ostringstream discard;
-        const ScriptOutcome outcome = run_script_file(script, session, ui, quiet ? discard : std::cout);
+        const ScriptOutcome outcome = run_script_file(a.script, session, ui, a.quiet ? discard : std::cout);
         if (outcome.failure != ScriptFailure::None) {
             std::cerr << outcome.error.message() << "\n";
             return outcome.failure == ScriptFailure::CheckFailed ? k_exit_failed : k_exit_bad_input;
         }
     }
-    if (!headless) {
+    if (!a.headless) {
         WindowUnavailable why;
         const int status = run_window(session, ui, why);
         if (status != k_exit_ok)
@@ -79,13 +75,35 @@ int main(int argc, char** argv)
                       << "; use --headless --script actions.json\n";
         return status;
     }
-    if (!screenshot.empty()) {
+    if (!a.screenshot.empty()) {
         ui.frame(0.0);
-        if (supermodal::Status status = render_screenshot(session, ui, screenshot, size[0], size[1]);
+        if (supermodal::Status status = render_screenshot(session, ui, a.screenshot, a.size[0], a.size[1]);
             !status) {
             std::cerr << status.error().message() << "\n";
             return k_exit_bad_input;
         }
     }
     return k_exit_ok;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"supermodal-editor: edit superquadric scenes; --headless runs a script of actions"};
+    EditorArgs a;
+    app.add_flag("--headless", a.headless, "No window: run --script and exit");
+    app.add_option("--script", a.script, "Actions to run (JSON, docs/editor.md)")->check(CLI::ExistingFile);
+    app.add_option("--screenshot", a.screenshot, "PNG of the editor after the script");
+    app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
+    app.add_option("scene", a.scene, "Scene to load first (format v1)");
+    app.add_flag("-q,--quiet", a.quiet, "No per-action log");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? k_exit_ok : k_exit_bad_input;
+    }
+    if (const int status = choose_mode(a); status >= 0)
+        return status;
+    return run_editor(a);
 }

@@ -14,24 +14,6 @@ namespace supermodal::editor
 namespace
 {
 
-/// Keys each action takes besides "action" (and "comment", which any action may carry).
-const std::map<std::string, std::vector<std::string>, std::less<>> k_actions = {
-    {"load", {"file"}},
-    {"set", {"path", "value"}},
-    {"step", {"count"}},
-    {"frames", {"count", "seconds"}},
-    {"play", {}},
-    {"pause", {}},
-    {"reset", {}},
-    {"press", {"widget"}},
-    {"select", {"body"}},
-    {"pick", {"ray", "expect"}},
-    {"click", {"x", "y", "expect"}},
-    {"drag", {"ray", "to", "steps", "x0", "y0", "x1", "y1"}},
-    {"push", {"ray", "force", "steps", "x", "y", "depth"}},
-    {"windows", {"show"}},
-    {"save", {"file", "state"}},
-};
 /// Most steps or frames one action may ask for: a typo (1e9) should not hang CI.
 constexpr double k_max_count = 1e7;
 
@@ -152,6 +134,194 @@ std::string vec_text(const Vec3& v)
     return out.str();
 }
 
+/// What an action runs against; `where` is the action's JSON pointer.
+struct ActionContext {
+    const Json& action;
+    const std::string& where;
+    const std::filesystem::path& base_dir;
+    EditorSession& session;
+    EditorUi& ui;
+    std::ostream& log;
+};
+
+void run_load(const ActionContext& c)
+{
+    const std::filesystem::path file = c.base_dir / text(c.action, c.where, "file");
+    check(c.session.load(file.string()), c.where + "/file");
+    c.ui.select_body("");
+    c.log << " " << file.string() << ": " << c.session.scene().bodies.size() << " bodies";
+}
+
+void run_set(const ActionContext& c)
+{
+    const std::string path = text(c.action, c.where, "path");
+    check(c.session.set(path, required(c.action, c.where, "value")), c.where);
+    c.log << " " << path << " = " << c.action["value"].dump()
+          << (c.session.last_set_effect() == SetEffect::Live ? " (live)" : " (rebuilt)");
+}
+
+void run_step(const ActionContext& c)
+{
+    const int n = count(c.action, c.where, "count", 1);
+    c.session.step(n);
+    c.log << " " << n << ": t = " << c.session.world().time() << " s, " << c.session.ms_per_step()
+          << " ms/step";
+}
+
+void run_frames(const ActionContext& c)
+{
+    const int n = count(c.action, c.where, "count", 1);
+    const double seconds = number(c.action, c.where, "seconds", 1.0 / 60.0);
+    if (!(seconds > 0.0 && seconds <= 1.0))
+        fail(c.where + "/seconds", "expected seconds per frame in (0, 1]");
+    for (int i = 0; i < n; ++i)
+        c.ui.frame(seconds);
+    c.log << " " << n << ": t = " << c.session.world().time() << " s";
+}
+
+void run_play(const ActionContext& c)
+{
+    c.session.play();
+}
+
+void run_pause(const ActionContext& c)
+{
+    c.session.pause();
+}
+
+void run_reset(const ActionContext& c)
+{
+    check(c.session.reset(), c.where);
+}
+
+void run_press(const ActionContext& c)
+{
+    const std::string widget = text(c.action, c.where, "widget");
+    check(c.ui.press(widget), c.where + "/widget");
+    c.log << " \"" << widget << "\"";
+    if (!c.ui.last_error().empty())
+        fail(c.where, "the widget's action failed: " + c.ui.last_error());
+}
+
+void run_select(const ActionContext& c)
+{
+    const std::string body = text(c.action, c.where, "body");
+    if (find_body(c.session.world(), body).is_null())
+        fail(c.where + "/body", "no body named \"" + body + "\"");
+    c.ui.select_body(body);
+}
+
+/// Pick along `r`, select what it hits, and check "expect" when given.
+void pick_along(const ActionContext& c, const Ray& r)
+{
+    const std::optional<PickHit> hit = c.session.pick(r);
+    const std::string name = hit ? hit->name : std::string();
+    if (hit)
+        c.ui.select_body(name);
+    c.log << " " << (hit ? name + " at " + vec_text(hit->point) : std::string("nothing"));
+    if (c.action.contains("expect") && text(c.action, c.where, "expect") != name)
+        fail(c.where + "/expect",
+             "expected the ray to hit \"" + c.action["expect"].get<std::string>() + "\", it hit " +
+                 (hit ? "\"" + name + "\"" : std::string("nothing")),
+             ScriptFailure::CheckFailed);
+}
+
+void run_pick(const ActionContext& c)
+{
+    pick_along(c, ray(c.action, c.where));
+}
+
+void run_click(const ActionContext& c)
+{
+    pick_along(c, pixel_ray(c.action, c.where, c.session, c.ui, "x", "y"));
+}
+
+void run_drag(const ActionContext& c)
+{
+    const Ray grab = ray_or_pixel(c.action, c.where, c.session, c.ui, "x0", "y0");
+    const std::optional<PickHit> hit = c.session.pick(grab);
+    check(c.session.drag_begin(grab), c.where);
+    if (c.action.contains("ray")) {
+        c.session.drag_to(vec3(required(c.action, c.where, "to"), c.where + "/to"));
+    } else {
+        // The mouse moves the grabbed point in the plane through it that faces the grab ray.
+        const Ray to = pixel_ray(c.action, c.where, c.session, c.ui, "x1", "y1");
+        const Vec3 n = normalized(grab.direction), d = normalized(to.direction);
+        const double facing = dot(d, n);
+        if (!(facing > 1e-6))
+            fail(c.where + "/x1", "the pixel's ray does not meet the drag plane");
+        c.session.drag_to(to.origin + (dot(hit->point - to.origin, n) / facing) * d);
+    }
+    const int n = count(c.action, c.where, "steps", 1);
+    c.session.step(n);
+    c.log << " " << body_name(c.session.world(), c.session.drag()->body) << " for " << n << " steps";
+    c.session.drag_end();
+}
+
+void run_push(const ActionContext& c)
+{
+    const Ray r = ray_or_pixel(c.action, c.where, c.session, c.ui, "x", "y");
+    const int n = count(c.action, c.where, "steps", 1);
+    if (c.action.contains("depth") == c.action.contains("force"))
+        fail(c.where, "expected either \"force\" [N] or \"depth\" [m]");
+    if (c.action.contains("depth")) {
+        const double depth = number(c.action, c.where, "depth", 0.0);
+        check(c.session.mould(r, depth, n), c.where);
+        c.session.step(n);
+        c.log << " " << depth << " m deep for " << n << " steps: reached " << c.session.mould_depth_reached()
+              << " m";
+    } else {
+        const double force = number(c.action, c.where, "force", 0.0);
+        check(c.session.push(r, force, n), c.where);
+        c.session.step(n);
+        c.log << " " << force << " N for " << n << " steps";
+    }
+}
+
+void run_windows(const ActionContext& c)
+{
+    const Json& show = required(c.action, c.where, "show");
+    if (!show.is_boolean())
+        fail(c.where + "/show", "expected true or false, found " + kind_of(show));
+    c.ui.show_windows = show.get<bool>();
+}
+
+void run_save(const ActionContext& c)
+{
+    const std::filesystem::path file = c.base_dir / text(c.action, c.where, "file");
+    std::string state = "current";
+    if (c.action.contains("state"))
+        state = text(c.action, c.where, "state");
+    if (state != "current" && state != "initial")
+        fail(c.where + "/state", "expected \"current\" or \"initial\", found \"" + state + "\"");
+    check(c.session.save(file.string(), state == "current"), c.where + "/file");
+    c.log << " " << file.string();
+}
+
+struct ActionSpec {
+    std::vector<std::string> keys; ///< Keys besides "action" (and "comment", which any action may carry).
+    void (*run)(const ActionContext&);
+};
+
+/// The actions by name (listed in this order when a script names an unknown one).
+const std::map<std::string, ActionSpec, std::less<>> k_actions = {
+    {"load", {{"file"}, run_load}},
+    {"set", {{"path", "value"}, run_set}},
+    {"step", {{"count"}, run_step}},
+    {"frames", {{"count", "seconds"}, run_frames}},
+    {"play", {{}, run_play}},
+    {"pause", {{}, run_pause}},
+    {"reset", {{}, run_reset}},
+    {"press", {{"widget"}, run_press}},
+    {"select", {{"body"}, run_select}},
+    {"pick", {{"ray", "expect"}, run_pick}},
+    {"click", {{"x", "y", "expect"}, run_click}},
+    {"drag", {{"ray", "to", "steps", "x0", "y0", "x1", "y1"}, run_drag}},
+    {"push", {{"ray", "force", "steps", "x", "y", "depth"}, run_push}},
+    {"windows", {{"show"}, run_windows}},
+    {"save", {{"file", "state"}, run_save}},
+};
+
 void run_action(const Json& action, const std::string& where, const std::filesystem::path& base_dir,
                 EditorSession& session, EditorUi& ui, std::ostream& log)
 {
@@ -161,121 +331,20 @@ void run_action(const Json& action, const std::string& where, const std::filesys
     const auto known = k_actions.find(verb);
     if (known == k_actions.end()) {
         std::string names;
-        for (const auto& [name, keys] : k_actions)
+        for (const auto& [name, spec] : k_actions)
             names += (names.empty() ? "" : ", ") + name;
         fail(where + "/action", "unknown action \"" + verb + "\"; actions are: " + names);
     }
+    const std::vector<std::string>& keys = known->second.keys;
     for (const auto& item : action.items())
         if (item.key() != "action" && item.key() != "comment" &&
-            std::find(known->second.begin(), known->second.end(), item.key()) == known->second.end())
+            std::find(keys.begin(), keys.end(), item.key()) == keys.end())
             fail(where + "/" + item.key(), "unknown key \"" + item.key() + "\" for action \"" + verb + "\"");
     if (verb != "load" && !session.has_world())
         fail(where, "no scene is loaded: start the script with {\"action\": \"load\", \"file\": ...}");
 
     log << where << " " << verb;
-    if (verb == "load") {
-        const std::filesystem::path file = base_dir / text(action, where, "file");
-        check(session.load(file.string()), where + "/file");
-        ui.select_body("");
-        log << " " << file.string() << ": " << session.scene().bodies.size() << " bodies";
-    } else if (verb == "set") {
-        const std::string path = text(action, where, "path");
-        check(session.set(path, required(action, where, "value")), where);
-        log << " " << path << " = " << action["value"].dump()
-            << (session.last_set_effect() == SetEffect::Live ? " (live)" : " (rebuilt)");
-    } else if (verb == "step") {
-        const int n = count(action, where, "count", 1);
-        session.step(n);
-        log << " " << n << ": t = " << session.world().time() << " s, " << session.ms_per_step()
-            << " ms/step";
-    } else if (verb == "frames") {
-        const int n = count(action, where, "count", 1);
-        const double seconds = number(action, where, "seconds", 1.0 / 60.0);
-        if (!(seconds > 0.0 && seconds <= 1.0))
-            fail(where + "/seconds", "expected seconds per frame in (0, 1]");
-        for (int i = 0; i < n; ++i)
-            ui.frame(seconds);
-        log << " " << n << ": t = " << session.world().time() << " s";
-    } else if (verb == "play") {
-        session.play();
-    } else if (verb == "pause") {
-        session.pause();
-    } else if (verb == "reset") {
-        check(session.reset(), where);
-    } else if (verb == "press") {
-        const std::string widget = text(action, where, "widget");
-        check(ui.press(widget), where + "/widget");
-        log << " \"" << widget << "\"";
-        if (!ui.last_error().empty())
-            fail(where, "the widget's action failed: " + ui.last_error());
-    } else if (verb == "select") {
-        const std::string body = text(action, where, "body");
-        if (find_body(session.world(), body).is_null())
-            fail(where + "/body", "no body named \"" + body + "\"");
-        ui.select_body(body);
-    } else if (verb == "pick" || verb == "click") {
-        const std::optional<PickHit> hit = session.pick(
-            verb == "pick" ? ray(action, where) : pixel_ray(action, where, session, ui, "x", "y"));
-        const std::string name = hit ? hit->name : std::string();
-        if (hit)
-            ui.select_body(name);
-        log << " " << (hit ? name + " at " + vec_text(hit->point) : std::string("nothing"));
-        if (action.contains("expect") && text(action, where, "expect") != name)
-            fail(where + "/expect",
-                 "expected the ray to hit \"" + action["expect"].get<std::string>() + "\", it hit " +
-                     (hit ? "\"" + name + "\"" : std::string("nothing")),
-                 ScriptFailure::CheckFailed);
-    } else if (verb == "drag") {
-        const Ray grab = ray_or_pixel(action, where, session, ui, "x0", "y0");
-        const std::optional<PickHit> hit = session.pick(grab);
-        check(session.drag_begin(grab), where);
-        if (action.contains("ray")) {
-            session.drag_to(vec3(required(action, where, "to"), where + "/to"));
-        } else {
-            // The mouse moves the grabbed point in the plane through it that faces the grab ray.
-            const Ray to = pixel_ray(action, where, session, ui, "x1", "y1");
-            const Vec3 n = normalized(grab.direction), d = normalized(to.direction);
-            const double facing = dot(d, n);
-            if (!(facing > 1e-6))
-                fail(where + "/x1", "the pixel's ray does not meet the drag plane");
-            session.drag_to(to.origin + (dot(hit->point - to.origin, n) / facing) * d);
-        }
-        const int n = count(action, where, "steps", 1);
-        session.step(n);
-        log << " " << body_name(session.world(), session.drag()->body) << " for " << n << " steps";
-        session.drag_end();
-    } else if (verb == "push") {
-        const Ray r = ray_or_pixel(action, where, session, ui, "x", "y");
-        const int n = count(action, where, "steps", 1);
-        if (action.contains("depth") == action.contains("force"))
-            fail(where, "expected either \"force\" [N] or \"depth\" [m]");
-        if (action.contains("depth")) {
-            const double depth = number(action, where, "depth", 0.0);
-            check(session.mould(r, depth, n), where);
-            session.step(n);
-            log << " " << depth << " m deep for " << n << " steps: reached " << session.mould_depth_reached()
-                << " m";
-        } else {
-            const double force = number(action, where, "force", 0.0);
-            check(session.push(r, force, n), where);
-            session.step(n);
-            log << " " << force << " N for " << n << " steps";
-        }
-    } else if (verb == "windows") {
-        const Json& show = required(action, where, "show");
-        if (!show.is_boolean())
-            fail(where + "/show", "expected true or false, found " + kind_of(show));
-        ui.show_windows = show.get<bool>();
-    } else if (verb == "save") {
-        const std::filesystem::path file = base_dir / text(action, where, "file");
-        std::string state = "current";
-        if (action.contains("state"))
-            state = text(action, where, "state");
-        if (state != "current" && state != "initial")
-            fail(where + "/state", "expected \"current\" or \"initial\", found \"" + state + "\"");
-        check(session.save(file.string(), state == "current"), where + "/file");
-        log << " " << file.string();
-    }
+    known->second.run(ActionContext{action, where, base_dir, session, ui, log});
     log << "\n";
 }
 

@@ -116,17 +116,16 @@ void handle_mouse(GLFWwindow* window, EditorSession& session, EditorUi& ui, bool
     }
 }
 
-} // namespace
-
-int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
+// Starts GLFW and opens an OpenGL ES 3.0 window through EGL; null, with `why` filled in, when it cannot.
+GLFWwindow* open_window(EditorUi& ui, WindowUnavailable& why)
 {
     if (!display_available()) {
         why.message = "no display ($DISPLAY and $WAYLAND_DISPLAY are unset)";
-        return 2;
+        return nullptr;
     }
     if (!glfwInit()) {
         why.message = "GLFW could not start on this display";
-        return 2;
+        return nullptr;
     }
     glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API); // libGLESv2 dispatches EGL contexts
@@ -136,18 +135,14 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
     if (window == nullptr) {
         glfwTerminate();
         why.message = "no OpenGL ES 3.0 window could be created through EGL";
-        return 2;
     }
-    RenderDef def = default_render_def();
-    def.width = ui.width();
-    def.height = ui.height();
-    Result<Renderer> renderer = Renderer::create(def);
-    if (!renderer) {
-        glfwDestroyWindow(window);
-        glfwTerminate();
-        why.message = renderer.error().message();
-        return 2;
-    }
+    return window;
+}
+
+// The window's loop until it is closed: the scene rendered offscreen, shown behind ImGui's windows,
+// and the mouse. ImGui's GLFW and GL back ends live as long as the loop.
+void window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, EditorUi& ui)
+{
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
     ImGui::SetCurrentContext(ui.context());
@@ -172,9 +167,9 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         if (session.has_world()) {
-            apply_scene_looks(*renderer, session.scene(), session.world());
-            ui.report(renderer->render(session.world(), editor_camera(session, ui), image,
-                                       PoseSource::Interpolated));
+            apply_scene_looks(renderer, session.scene(), session.world());
+            ui.report(renderer.render(session.world(), editor_camera(session, ui), image,
+                                      PoseSource::Interpolated));
         }
         glfwMakeContextCurrent(window); // the renderer made its own context current
         if (!image.rgba.empty())
@@ -190,6 +185,26 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
     view.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
+}
+
+} // namespace
+
+int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
+{
+    GLFWwindow* window = open_window(ui, why);
+    if (window == nullptr)
+        return 2;
+    RenderDef def = default_render_def();
+    def.width = ui.width();
+    def.height = ui.height();
+    Result<Renderer> renderer = Renderer::create(def);
+    if (!renderer) {
+        glfwDestroyWindow(window);
+        glfwTerminate();
+        why.message = renderer.error().message();
+        return 2;
+    }
+    window_loop(window, *renderer, session, ui);
     glfwDestroyWindow(window);
     glfwTerminate();
     return 0;

@@ -45,6 +45,88 @@ bool ok(const BenchRow& r)
     return r.status == "ok" && r.knob != "reference";
 }
 
+/// The plot's points: one data block per knob (gnuplot's `index`), in first-seen order, and the front.
+struct PlotData {
+    std::map<std::string, std::string> blocks;
+    std::vector<std::string> order;
+    std::vector<const BenchRow*> front; ///< By cost, cheapest first.
+};
+
+PlotData plot_data(const BenchSummary& s)
+{
+    PlotData p;
+    for (const BenchRow& r : s.rows) {
+        if (!ok(r) || !(r.errors.trajectory_rms > 0.0) || !(r.cpu_ms_per_second > 0.0))
+            continue; // a log axis has no place for zero
+        if (r.pareto)
+            p.front.push_back(&r);
+        // The scene's own settings appear under several knobs; they are drawn once, as their own point.
+        const std::string block = r.base ? "scene's own settings" : r.knob;
+        if (p.blocks.count(block) && r.base)
+            continue;
+        if (!p.blocks.count(block))
+            p.order.push_back(block);
+        p.blocks[block] += number(r.cpu_ms_per_second) + " " + number(r.errors.trajectory_rms) + " \"" +
+                           (r.base ? std::string() : r.value) + "\"\n";
+    }
+    std::sort(p.front.begin(), p.front.end(), [](const BenchRow* a, const BenchRow* b) {
+        return a->cpu_ms_per_second < b->cpu_ms_per_second;
+    });
+    return p;
+}
+
+/// The gnuplot script drawing STEM.dat (blocks in `order`, then the front) into STEM.png.
+std::string gnuplot_script(const BenchSummary& s, const std::vector<std::string>& order,
+                           const std::string& stem)
+{
+    std::string script =
+        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
+        ".png'\n"
+        "set logscale xy\nset grid\nset key outside right top noenhanced\nset termoption noenhanced\n"
+        "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
+        "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
+        "set title 'Speed vs accuracy: " +
+        std::filesystem::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
+    script += "plot ";
+    for (size_t i = 0; i < order.size(); ++i) {
+        const bool own = order[i] == "scene's own settings";
+        script +=
+            "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
+            (own ? std::string("3 ps 3 lw 3 lc rgb 'black'")
+                 : std::to_string(i + 4) + " ps 1.6 lw 2 lc rgb '" + k_colours[i % k_colours.size()] + "'") +
+            " title \"" + order[i] + "\", ";
+        script += "'' index " + std::to_string(i) +
+                  " using 1:2:3 with labels offset 0.6,0.6 left font ',8' "
+                  "notitle, ";
+    }
+    script += "'" + stem + ".dat' index " + std::to_string(order.size()) +
+              " using 1:2 with lines lw 2 lc rgb 'black' dt 2 title 'Pareto front'\n";
+    return script;
+}
+
+/// Writes STEM.dat and STEM.gp, runs gnuplot and moves STEM.png to png_path; removes the temporary
+/// files either way. An error message, or empty.
+std::string run_gnuplot(const std::string& stem, const std::string& data, const std::string& script,
+                        const std::string& png_path)
+{
+    namespace fs = std::filesystem;
+    std::string e = write_file_atomically(stem + ".dat", data);
+    if (e.empty())
+        e = write_file_atomically(stem + ".gp", script);
+    if (e.empty() && std::system(("gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0)
+        e = "gnuplot failed on " + stem + ".gp";
+    std::error_code ec;
+    if (e.empty()) {
+        fs::rename(stem + ".png", png_path, ec);
+        if (ec)
+            e = png_path + ": " + ec.message();
+    }
+    fs::remove(stem + ".dat", ec);
+    fs::remove(stem + ".gp", ec);
+    fs::remove(stem + ".png", ec);
+    return e;
+}
+
 } // namespace
 
 void mark_pareto_front(std::vector<BenchRow>& rows)
@@ -152,76 +234,19 @@ nlohmann::json bench_json(const BenchSummary& s)
 
 std::string bench_plot(const BenchSummary& s, const std::string& png_path)
 {
-    namespace fs = std::filesystem;
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
         return "gnuplot not found";
-    // One data block per knob (gnuplot's `index`), then the front as a last block.
-    std::map<std::string, std::string> blocks;
-    std::vector<std::string> order;
-    std::vector<const BenchRow*> front;
-    for (const BenchRow& r : s.rows) {
-        if (!ok(r) || !(r.errors.trajectory_rms > 0.0) || !(r.cpu_ms_per_second > 0.0))
-            continue; // a log axis has no place for zero
-        if (r.pareto)
-            front.push_back(&r);
-        // The scene's own settings appear under several knobs; they are drawn once, as their own point.
-        const std::string block = r.base ? "scene's own settings" : r.knob;
-        if (blocks.count(block) && r.base)
-            continue;
-        if (!blocks.count(block))
-            order.push_back(block);
-        blocks[block] += number(r.cpu_ms_per_second) + " " + number(r.errors.trajectory_rms) + " \"" +
-                         (r.base ? std::string() : r.value) + "\"\n";
-    }
-    if (order.empty())
+    const PlotData plot = plot_data(s);
+    if (plot.order.empty())
         return "nothing to plot: no configuration ran with a trajectory error above 0 (a static scene "
                "moves nothing; the log axis has no place for 0)";
-    std::sort(front.begin(), front.end(), [](const BenchRow* a, const BenchRow* b) {
-        return a->cpu_ms_per_second < b->cpu_ms_per_second;
-    });
     const std::string stem = png_path + ".tmp." + std::to_string(::getpid());
     std::string data;
-    for (const std::string& k : order)
-        data += blocks[k] + "\n\n";
-    for (const BenchRow* r : front)
+    for (const std::string& k : plot.order)
+        data += plot.blocks.at(k) + "\n\n";
+    for (const BenchRow* r : plot.front)
         data += number(r->cpu_ms_per_second) + " " + number(r->errors.trajectory_rms) + " \"\"\n";
-    std::string script =
-        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
-        ".png'\n"
-        "set logscale xy\nset grid\nset key outside right top noenhanced\nset termoption noenhanced\n"
-        "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
-        "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
-        "set title 'Speed vs accuracy: " +
-        fs::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
-    script += "plot ";
-    for (size_t i = 0; i < order.size(); ++i) {
-        const bool own = order[i] == "scene's own settings";
-        script +=
-            "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
-            (own ? std::string("3 ps 3 lw 3 lc rgb 'black'")
-                 : std::to_string(i + 4) + " ps 1.6 lw 2 lc rgb '" + k_colours[i % k_colours.size()] + "'") +
-            " title \"" + order[i] + "\", ";
-        script += "'' index " + std::to_string(i) +
-                  " using 1:2:3 with labels offset 0.6,0.6 left font ',8' "
-                  "notitle, ";
-    }
-    script += "'" + stem + ".dat' index " + std::to_string(order.size()) +
-              " using 1:2 with lines lw 2 lc rgb 'black' dt 2 title 'Pareto front'\n";
-    std::string e = write_file_atomically(stem + ".dat", data);
-    if (e.empty())
-        e = write_file_atomically(stem + ".gp", script);
-    if (e.empty() && std::system(("gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0)
-        e = "gnuplot failed on " + stem + ".gp";
-    std::error_code ec;
-    if (e.empty()) {
-        fs::rename(stem + ".png", png_path, ec);
-        if (ec)
-            e = png_path + ": " + ec.message();
-    }
-    fs::remove(stem + ".dat", ec);
-    fs::remove(stem + ".gp", ec);
-    fs::remove(stem + ".png", ec);
-    return e;
+    return run_gnuplot(stem, data, gnuplot_script(s, plot.order, stem), png_path);
 }
 
 } // namespace supermodal::cli

@@ -56,6 +56,156 @@ void use_every_mode(Scene& s, const BenchBase& base)
     }
 }
 
+// Kinetic, potential and modal energy of the bodies [J].
+double total_energy(const World& world, const std::vector<Entity>& bodies)
+{
+    double sum = 0.0;
+    for (Entity e : bodies)
+        sum += body_kinetic_energy(world, e) + body_potential_energy(world, e) + body_modal_energy(world, e);
+    return sum;
+}
+
+std::vector<Vec3> centres_of_mass(const World& world, const std::vector<Entity>& bodies)
+{
+    std::vector<Vec3> p;
+    p.reserve(bodies.size());
+    for (Entity e : bodies)
+        p.push_back(body_center_of_mass(world, e));
+    return p;
+}
+
+// Centres of mass at the fixed sample times k·every, from the states at the ends of each step.
+struct ComSampler {
+    double every = 0.0;  ///< Sample spacing [s].
+    long long count = 0; ///< Samples wanted over the run.
+    std::vector<Vec3> previous;
+    double previous_time = 0.0;
+
+    // Samples that fall inside the step that ended at `now`: linear between its ends, so every dt sees
+    // the same times.
+    void add(double now, std::vector<Vec3> current, std::vector<std::vector<Vec3>>& com)
+    {
+        while (static_cast<long long>(com.size()) < count) {
+            const double ts = static_cast<double>(com.size()) * every;
+            if (ts > now + 1e-12 * every)
+                break;
+            const double alpha = now > previous_time
+                                     ? std::clamp((ts - previous_time) / (now - previous_time), 0.0, 1.0)
+                                     : 1.0;
+            std::vector<Vec3> s(current.size());
+            for (size_t b = 0; b < s.size(); ++b)
+                s[b] = previous[b] + alpha * (current[b] - previous[b]);
+            com.push_back(std::move(s));
+        }
+        previous = std::move(current);
+        previous_time = now;
+    }
+};
+
+void sweep_dt(const Scene& scene, const BenchBase&, std::vector<BenchConfig>& out)
+{
+    for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) {
+        BenchConfig c = config(scene, "dt", factor_label(f));
+        c.scene.world.dt = scene.world.dt * f;
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_substeps(const Scene& scene, const BenchBase&, std::vector<BenchConfig>& out)
+{
+    for (int n : {1, 2, 4}) {
+        BenchConfig c = config(scene, "substeps", std::to_string(n));
+        c.scene.world.substep_count = n;
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_modes(const Scene& scene, const BenchBase& base, std::vector<BenchConfig>& out)
+{
+    for (int r : {1, 2, 4, 8, 16}) {
+        BenchConfig c = config(scene, "modes", std::to_string(r));
+        for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.mode_count = r; });
+        out.push_back(std::move(c));
+    }
+    // Every mode of the lattice: "full" (refused above 1536 dofs).
+    BenchConfig c = config(scene, "modes", "full");
+    use_every_mode(c.scene, base);
+    out.push_back(std::move(c));
+}
+
+void sweep_lattice(const Scene& scene, const BenchBase& base, std::vector<BenchConfig>& out)
+{
+    for (double f : {0.5, 1.0, 1.5}) {
+        BenchConfig c = config(scene, "lattice", factor_label(f));
+        for_modal(c.scene, base, [&](ModalBodyDef& m, size_t i) {
+            for (int a = 0; a < 3; ++a)
+                m.lattice[a] = std::max(1, static_cast<int>(std::lround(base.modal_cells[i][a] * f)));
+        });
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_spacing(const Scene& scene, const BenchBase& base, std::vector<BenchConfig>& out)
+{
+    if (!(base.spacing > 0.0))
+        return;
+    for (double f : {2.0, 1.0, 0.5}) {
+        BenchConfig c = config(scene, "spacing", factor_label(f));
+        c.scene.world.contact.sample_spacing = base.spacing * f;
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_path(const Scene& scene, const BenchBase&, std::vector<BenchConfig>& out)
+{
+    for (auto [path, name] :
+         {std::pair{ContactPath::Auto, "auto"}, std::pair{ContactPath::Sampling, "sampling"},
+          std::pair{ContactPath::SupportMap, "support_map"}}) {
+        BenchConfig c = config(scene, "path", name);
+        c.scene.world.contact.path = path;
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_integrator(const Scene& scene, const BenchBase& base, std::vector<BenchConfig>& out)
+{
+    for (const auto& [integrator, name] :
+         {std::pair{ModalIntegrator::Exact, "exact"},
+          std::pair{ModalIntegrator::CentralDifference, "central_difference"}}) {
+        BenchConfig c = config(scene, "integrator", name);
+        const ModalIntegrator chosen = integrator; // clang 14 cannot capture a structured binding
+        for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.integrator = chosen; });
+        out.push_back(std::move(c));
+    }
+}
+
+void sweep_frequency(const Scene& scene, const BenchBase&, std::vector<BenchConfig>& out)
+{
+    for (double f : {0.25, 0.5, 1.0}) {
+        BenchConfig c = config(scene, "frequency", factor_label(f) + "cap");
+        const double h = scene.world.dt / scene.world.substep_count;
+        c.scene.world.contact.frequency_hz = f / (10.0 * h);
+        out.push_back(std::move(c));
+    }
+}
+
+/// A knob of the sweep: its configurations, in k_bench_knobs order; `modal` knobs need a modal body.
+struct Knob {
+    const char* name;
+    bool modal;
+    void (*sweep)(const Scene&, const BenchBase&, std::vector<BenchConfig>&);
+};
+constexpr Knob k_knobs[] = {
+    {"dt", false, sweep_dt},
+    {"substeps", false, sweep_substeps},
+    {"modes", true, sweep_modes},
+    {"lattice", true, sweep_lattice},
+    {"spacing", false, sweep_spacing},
+    {"path", false, sweep_path},
+    {"integrator", true, sweep_integrator},
+    {"frequency", false, sweep_frequency},
+};
+
 } // namespace
 
 std::string resolve_base(const Scene& scene, BenchBase& base)
@@ -108,71 +258,10 @@ std::vector<BenchConfig> make_sweep(const Scene& scene, const BenchBase& base,
 {
     std::vector<BenchConfig> out;
     const bool modal = !base.modal_bodies.empty();
-    auto wanted = [&](const std::string& k) {
-        return knobs.empty() || std::find(knobs.begin(), knobs.end(), k) != knobs.end();
-    };
-    if (wanted("dt"))
-        for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) {
-            BenchConfig c = config(scene, "dt", factor_label(f));
-            c.scene.world.dt = scene.world.dt * f;
-            out.push_back(std::move(c));
-        }
-    if (wanted("substeps"))
-        for (int n : {1, 2, 4}) {
-            BenchConfig c = config(scene, "substeps", std::to_string(n));
-            c.scene.world.substep_count = n;
-            out.push_back(std::move(c));
-        }
-    if (wanted("modes") && modal)
-        for (int r : {1, 2, 4, 8, 16}) {
-            BenchConfig c = config(scene, "modes", std::to_string(r));
-            for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.mode_count = r; });
-            out.push_back(std::move(c));
-        }
-    if (wanted("modes") && modal) { // every mode of the lattice: "full" (refused above 1536 dofs)
-        BenchConfig c = config(scene, "modes", "full");
-        use_every_mode(c.scene, base);
-        out.push_back(std::move(c));
-    }
-    if (wanted("lattice") && modal)
-        for (double f : {0.5, 1.0, 1.5}) {
-            BenchConfig c = config(scene, "lattice", factor_label(f));
-            for_modal(c.scene, base, [&](ModalBodyDef& m, size_t i) {
-                for (int a = 0; a < 3; ++a)
-                    m.lattice[a] = std::max(1, static_cast<int>(std::lround(base.modal_cells[i][a] * f)));
-            });
-            out.push_back(std::move(c));
-        }
-    if (wanted("spacing") && base.spacing > 0.0)
-        for (double f : {2.0, 1.0, 0.5}) {
-            BenchConfig c = config(scene, "spacing", factor_label(f));
-            c.scene.world.contact.sample_spacing = base.spacing * f;
-            out.push_back(std::move(c));
-        }
-    if (wanted("path"))
-        for (auto [path, name] :
-             {std::pair{ContactPath::Auto, "auto"}, std::pair{ContactPath::Sampling, "sampling"},
-              std::pair{ContactPath::SupportMap, "support_map"}}) {
-            BenchConfig c = config(scene, "path", name);
-            c.scene.world.contact.path = path;
-            out.push_back(std::move(c));
-        }
-    if (wanted("integrator") && modal)
-        for (const auto& [integrator, name] :
-             {std::pair{ModalIntegrator::Exact, "exact"},
-              std::pair{ModalIntegrator::CentralDifference, "central_difference"}}) {
-            BenchConfig c = config(scene, "integrator", name);
-            const ModalIntegrator chosen = integrator; // clang 14 cannot capture a structured binding
-            for_modal(c.scene, base, [&](ModalBodyDef& m, size_t) { m.integrator = chosen; });
-            out.push_back(std::move(c));
-        }
-    if (wanted("frequency"))
-        for (double f : {0.25, 0.5, 1.0}) {
-            BenchConfig c = config(scene, "frequency", factor_label(f) + "cap");
-            const double h = scene.world.dt / scene.world.substep_count;
-            c.scene.world.contact.frequency_hz = f / (10.0 * h);
-            out.push_back(std::move(c));
-        }
+    for (const Knob& k : k_knobs)
+        if ((knobs.empty() || std::find(knobs.begin(), knobs.end(), k.name) != knobs.end()) &&
+            (modal || !k.modal))
+            k.sweep(scene, base, out);
     return out;
 }
 
@@ -195,30 +284,17 @@ BenchTrace run_bench(const Scene& scene, const BenchBase& base, double seconds, 
             dynamic.push_back(e);
             t.body_names.push_back(body_name(world, e));
         }
-    auto energy = [&] {
-        double sum = 0.0;
-        for (Entity e : dynamic)
-            sum +=
-                body_kinetic_energy(world, e) + body_potential_energy(world, e) + body_modal_energy(world, e);
-        return sum;
-    };
-    auto positions = [&] {
-        std::vector<Vec3> p;
-        p.reserve(dynamic.size());
-        for (Entity e : dynamic)
-            p.push_back(body_center_of_mass(world, e));
-        return p;
-    };
     const double dt = scene.world.dt;
     t.steps = std::max(1LL, static_cast<long long>(std::ceil(seconds / dt - 1e-9)));
-    const long long sample_count = static_cast<long long>(std::floor(seconds / sample_every + 1e-9)) + 1;
+    ComSampler sampler;
+    sampler.every = sample_every;
+    sampler.count = static_cast<long long>(std::floor(seconds / sample_every + 1e-9)) + 1;
     const bool has_constraints = !world_constraints(world).empty();
-    std::vector<Vec3> previous;
-    double previous_time = world.time();
     if (record) {
-        t.energy_start = energy();
-        previous = positions();
-        t.com.push_back(previous);
+        t.energy_start = total_energy(world, dynamic);
+        sampler.previous = centres_of_mass(world, dynamic);
+        sampler.previous_time = world.time();
+        t.com.push_back(sampler.previous);
     }
     double step_ms = 0.0;
     for (long long n = 0; n < t.steps; ++n) {
@@ -230,28 +306,12 @@ BenchTrace run_bench(const Scene& scene, const BenchBase& base, double seconds, 
         t.max_penetration = std::max(t.max_penetration, world_max_penetration(world));
         if (has_constraints)
             t.max_constraint_error = std::max(t.max_constraint_error, world_max_constraint_error(world));
-        const double now = world.time();
-        std::vector<Vec3> current = positions();
-        // Samples that fall inside this step: linear between its ends, so every dt sees the same times.
-        while (static_cast<long long>(t.com.size()) < sample_count) {
-            const double ts = static_cast<double>(t.com.size()) * sample_every;
-            if (ts > now + 1e-12 * sample_every)
-                break;
-            const double alpha = now > previous_time
-                                     ? std::clamp((ts - previous_time) / (now - previous_time), 0.0, 1.0)
-                                     : 1.0;
-            std::vector<Vec3> s(current.size());
-            for (size_t b = 0; b < s.size(); ++b)
-                s[b] = previous[b] + alpha * (current[b] - previous[b]);
-            t.com.push_back(std::move(s));
-        }
-        previous = std::move(current);
-        previous_time = now;
+        sampler.add(world.time(), centres_of_mass(world, dynamic), t.com);
     }
     t.cpu_ms_per_step = step_ms / static_cast<double>(t.steps);
     if (!record)
         return t;
-    t.energy_end = energy();
+    t.energy_end = total_energy(world, dynamic);
     t.non_finite = world.warnings().non_finite_bodies > 0 || world.warnings().modal_non_finite > 0 ||
                    !std::isfinite(t.energy_end);
     for (size_t index : base.modal_indices) {

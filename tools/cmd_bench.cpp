@@ -83,6 +83,107 @@ BenchRow measure(const Scene& scene, const BenchBase& base, double seconds, int 
     return row;
 }
 
+/// Checks --knobs and the --out files up front; an error message, or empty.
+std::string check_bench_options(const BenchOptions& o, std::vector<std::string>& knobs)
+{
+    if (std::string e = parse_knobs(o.knobs, knobs); !e.empty())
+        return e;
+    if (!o.out.empty())
+        for (const char* ext : {".csv", ".md", ".png"})
+            if (std::string e = check_writable(o.out + ext); !e.empty())
+                return e;
+    return {};
+}
+
+/// Runs the converged reference into `reference` and adds its row to the summary; an error message,
+/// or empty. Modal bodies: every mode of the lattice where it is small enough for the dense solve (the
+/// modal solution without truncation, so more modes come closer to it); else twice the scene's modes;
+/// else the scene's own.
+std::string measure_reference(const Scene& scene, const BenchBase& base, const BenchOptions& o,
+                              BenchSummary& summary, BenchTrace& reference)
+{
+    BenchRow ref_row;
+    const std::pair<ReferenceModes, const char*> tries[] = {
+        {ReferenceModes::All, ", every elastic mode of each lattice"},
+        {ReferenceModes::Doubled, ", modes doubled (every mode refused: lattice over the dense limit)"},
+        {ReferenceModes::Scene, ", the scene's mode counts (every mode and doubling refused)"}};
+    for (const auto& [modes, label] : tries) {
+        if (base.modal_bodies.empty() && modes != ReferenceModes::Scene)
+            continue;
+        reference = {};
+        ref_row = measure(reference_scene(scene, base, modes), base, summary.seconds, o.repeats, reference);
+        if (ref_row.status.rfind("refused", 0) != 0) {
+            if (!base.modal_bodies.empty())
+                summary.reference += std::string(label) + ", exact modal integrator";
+            break;
+        }
+    }
+    if (ref_row.status != "ok")
+        return "bench: the reference run failed (" + ref_row.status + "): " + o.scene;
+    ref_row.knob = "reference";
+    ref_row.value = "converged";
+    ref_row.errors.energy_drift = energy_drift(reference);
+    if (reference.max_constraint_error > 0.0 || !scene.constraints.empty())
+        ref_row.constraint_error = reference.max_constraint_error;
+    summary.rows.push_back(ref_row);
+    std::fprintf(stderr, "bench: reference %.4g ms/step (%lld steps)\n", ref_row.cpu_ms_per_step,
+                 ref_row.steps);
+    return {};
+}
+
+/// Runs every configuration of the sweep and adds its row, compared with the reference.
+void measure_sweep(const Scene& scene, const BenchBase& base, const std::vector<BenchConfig>& configs,
+                   const BenchOptions& o, const BenchTrace& reference, BenchSummary& summary)
+{
+    const std::string base_key = config_key(scene);
+    // Identical configurations (dt x1, substeps = the scene's, ...) run once.
+    std::map<std::string, BenchRow> done;
+    for (size_t i = 0; i < configs.size(); ++i) {
+        const BenchConfig& c = configs[i];
+        const std::string key = config_key(c.scene);
+        BenchRow row;
+        if (auto it = done.find(key); it != done.end()) {
+            row = it->second;
+        } else {
+            BenchTrace trace;
+            row = measure(c.scene, base, summary.seconds, o.repeats, trace);
+            if (row.status.rfind("refused", 0) != 0) {
+                row.errors = compare_to_reference(trace, reference);
+                if (!scene.constraints.empty())
+                    row.constraint_error = trace.max_constraint_error;
+            }
+            done[key] = row;
+        }
+        row.knob = c.knob;
+        row.value = c.value;
+        row.base = key == base_key;
+        std::fprintf(stderr, "bench: [%zu/%zu] %s %s: %s, %.4g ms/step, trajectory RMS %.3g m\n", i + 1,
+                     configs.size(), c.knob.c_str(), c.value.c_str(), row.status.c_str(), row.cpu_ms_per_step,
+                     row.errors.trajectory_rms);
+        summary.rows.push_back(std::move(row));
+    }
+}
+
+/// Writes PREFIX.csv/.md/.png and prints the JSON or CSV as asked; an exit code.
+int write_bench(const BenchOptions& o, const BenchSummary& summary)
+{
+    if (!o.out.empty()) {
+        for (auto [ext, text] :
+             {std::pair{".csv", bench_csv(summary)}, std::pair{".md", bench_markdown(summary)}})
+            if (const std::string e = write_file_atomically(o.out + ext, text); !e.empty()) {
+                print_error(e);
+                return k_exit_internal;
+            }
+        if (const std::string e = bench_plot(summary, o.out + ".png"); !e.empty())
+            std::fprintf(stderr, "bench: no plot: %s\n", e.c_str());
+    }
+    if (o.json)
+        std::printf("%s\n", json_text(bench_json(summary)).c_str());
+    else if (o.out.empty())
+        std::printf("%s", bench_csv(summary).c_str());
+    return k_exit_ok;
+}
+
 } // namespace
 
 CLI::App* add_bench_command(CLI::App& app, BenchOptions& o)
@@ -109,16 +210,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o)
 int bench_command(const BenchOptions& o)
 {
     std::vector<std::string> knobs;
-    if (const std::string e = parse_knobs(o.knobs, knobs); !e.empty()) {
+    if (const std::string e = check_bench_options(o, knobs); !e.empty()) {
         print_error(e);
         return k_exit_bad_input;
     }
-    if (!o.out.empty())
-        for (const char* ext : {".csv", ".md", ".png"})
-            if (const std::string e = check_writable(o.out + ext); !e.empty()) {
-                print_error(e);
-                return k_exit_bad_input;
-            }
     Result<Scene> scene = load_scene(o.scene);
     if (!scene) {
         print_error(scene.error().message());
@@ -140,11 +235,10 @@ int bench_command(const BenchOptions& o)
                     " has none");
         return k_exit_bad_input;
     }
-    const double seconds = o.seconds > 0.0 ? o.seconds : std::min(scene->duration, 1.0);
 
     BenchSummary summary;
     summary.scene = o.scene;
-    summary.seconds = seconds;
+    summary.seconds = o.seconds > 0.0 ? o.seconds : std::min(scene->duration, 1.0);
     summary.repeats = o.repeats;
     summary.reference = "dt/8, same substeps, sample spacing/2";
     if (hold_contact) {
@@ -154,82 +248,13 @@ int bench_command(const BenchOptions& o)
         summary.reference += buf;
     }
     BenchTrace reference;
-    // Modal bodies: every mode of the lattice where it is small enough for the dense solve (the modal
-    // solution without truncation, so more modes come closer to it); else twice the scene's modes;
-    // else the scene's own.
-    BenchRow ref_row;
-    const std::pair<ReferenceModes, const char*> tries[] = {
-        {ReferenceModes::All, ", every elastic mode of each lattice"},
-        {ReferenceModes::Doubled, ", modes doubled (every mode refused: lattice over the dense limit)"},
-        {ReferenceModes::Scene, ", the scene's mode counts (every mode and doubling refused)"}};
-    for (const auto& [modes, label] : tries) {
-        if (base.modal_bodies.empty() && modes != ReferenceModes::Scene)
-            continue;
-        reference = {};
-        ref_row = measure(reference_scene(*scene, base, modes), base, seconds, o.repeats, reference);
-        if (ref_row.status.rfind("refused", 0) != 0) {
-            if (!base.modal_bodies.empty())
-                summary.reference += std::string(label) + ", exact modal integrator";
-            break;
-        }
-    }
-    if (ref_row.status != "ok") {
-        print_error("bench: the reference run failed (" + ref_row.status + "): " + o.scene);
+    if (const std::string e = measure_reference(*scene, base, o, summary, reference); !e.empty()) {
+        print_error(e);
         return k_exit_bad_input;
     }
-    ref_row.knob = "reference";
-    ref_row.value = "converged";
-    ref_row.errors.energy_drift = energy_drift(reference);
-    if (reference.max_constraint_error > 0.0 || !scene->constraints.empty())
-        ref_row.constraint_error = reference.max_constraint_error;
-    summary.rows.push_back(ref_row);
-    std::fprintf(stderr, "bench: reference %.4g ms/step (%lld steps)\n", ref_row.cpu_ms_per_step,
-                 ref_row.steps);
-
-    const std::string base_key = config_key(*scene);
-    // Identical configurations (dt x1, substeps = the scene's, ...) run once.
-    std::map<std::string, BenchRow> done;
-    for (size_t i = 0; i < configs.size(); ++i) {
-        const BenchConfig& c = configs[i];
-        const std::string key = config_key(c.scene);
-        BenchRow row;
-        if (auto it = done.find(key); it != done.end()) {
-            row = it->second;
-        } else {
-            BenchTrace trace;
-            row = measure(c.scene, base, seconds, o.repeats, trace);
-            if (row.status.rfind("refused", 0) != 0) {
-                row.errors = compare_to_reference(trace, reference);
-                if (!scene->constraints.empty())
-                    row.constraint_error = trace.max_constraint_error;
-            }
-            done[key] = row;
-        }
-        row.knob = c.knob;
-        row.value = c.value;
-        row.base = key == base_key;
-        std::fprintf(stderr, "bench: [%zu/%zu] %s %s: %s, %.4g ms/step, trajectory RMS %.3g m\n", i + 1,
-                     configs.size(), c.knob.c_str(), c.value.c_str(), row.status.c_str(), row.cpu_ms_per_step,
-                     row.errors.trajectory_rms);
-        summary.rows.push_back(std::move(row));
-    }
+    measure_sweep(*scene, base, configs, o, reference, summary);
     mark_pareto_front(summary.rows);
-
-    if (!o.out.empty()) {
-        for (auto [ext, text] :
-             {std::pair{".csv", bench_csv(summary)}, std::pair{".md", bench_markdown(summary)}})
-            if (const std::string e = write_file_atomically(o.out + ext, text); !e.empty()) {
-                print_error(e);
-                return k_exit_internal;
-            }
-        if (const std::string e = bench_plot(summary, o.out + ".png"); !e.empty())
-            std::fprintf(stderr, "bench: no plot: %s\n", e.c_str());
-    }
-    if (o.json)
-        std::printf("%s\n", json_text(bench_json(summary)).c_str());
-    else if (o.out.empty())
-        std::printf("%s", bench_csv(summary).c_str());
-    return k_exit_ok;
+    return write_bench(o, summary);
 }
 
 } // namespace supermodal::cli

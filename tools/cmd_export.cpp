@@ -19,6 +19,72 @@ double seconds_since(std::chrono::steady_clock::time_point start)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Bad paths fail before the run, so a long export never ends in an unwritable file. An error, or empty.
+std::string check_export_options(const ExportOptions& o)
+{
+    if (o.out.empty() && o.obj_dir.empty())
+        return "export: nothing to write: give --out FILE.glb and/or --obj DIR";
+    if (!o.out.empty())
+        if (std::string e = check_writable(o.out); !e.empty())
+            return e;
+    if (!o.obj_dir.empty()) {
+        std::error_code ec;
+        if (std::filesystem::exists(o.obj_dir, ec) && !std::filesystem::is_directory(o.obj_dir, ec))
+            return o.obj_dir + ": exists and is not a directory";
+    }
+    return {};
+}
+
+// Writes the GLB and/or the OBJ sequence; sets glb_bytes. An error message, or empty.
+std::string write_export(const ExportOptions& o, const ExportRecording& rec, size_t& glb_bytes)
+{
+    if (!o.out.empty()) {
+        if (Status s = write_glb(rec, o.out); !s)
+            return s.error().message();
+        glb_bytes = static_cast<size_t>(std::filesystem::file_size(o.out));
+    }
+    if (!o.obj_dir.empty())
+        if (Status s = write_obj_sequence(rec, o.obj_dir); !s)
+            return s.error().message();
+    return {};
+}
+
+struct ExportTimes {
+    double record_seconds = 0.0, write_seconds = 0.0; ///< Wall time [s].
+};
+
+void print_export_report(const ExportOptions& o, const ExportRecording& rec, size_t glb_bytes,
+                         const ExportTimes& times)
+{
+    size_t targets = 0, vertices = 0;
+    for (const ExportBody& b : rec.bodies) {
+        targets += b.mode_displacements.size();
+        vertices += b.mesh.positions.size();
+    }
+    if (o.json) {
+        const nlohmann::json report = {{"scene", o.scene},
+                                       {"glb", o.out},
+                                       {"obj_dir", o.obj_dir},
+                                       {"bodies", rec.bodies.size()},
+                                       {"frames", rec.times.size()},
+                                       {"last_time", rec.times.back()},
+                                       {"vertices", vertices},
+                                       {"morph_targets", targets},
+                                       {"glb_bytes", glb_bytes},
+                                       {"record_seconds", times.record_seconds},
+                                       {"write_seconds", times.write_seconds}};
+        std::printf("%s\n", json_text(report).c_str());
+        return;
+    }
+    std::printf("%s: %zu bodies, %zu vertices, %zu morph targets, %zu frames over %.4g s; run %.3f s, "
+                "written %.3f s",
+                o.scene.c_str(), rec.bodies.size(), vertices, targets, rec.times.size(), rec.times.back(),
+                times.record_seconds, times.write_seconds);
+    if (!o.out.empty())
+        std::printf("; %s %zu bytes", o.out.c_str(), glb_bytes);
+    std::printf("\n");
+}
+
 } // namespace
 
 CLI::App* add_export_command(CLI::App& app, ExportOptions& o)
@@ -43,22 +109,9 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o)
 
 int export_command(const ExportOptions& o)
 {
-    if (o.out.empty() && o.obj_dir.empty()) {
-        print_error("export: nothing to write: give --out FILE.glb and/or --obj DIR");
+    if (const std::string e = check_export_options(o); !e.empty()) {
+        print_error(e);
         return k_exit_bad_input;
-    }
-    // Bad paths fail before the run, so a long export never ends in an unwritable file.
-    if (!o.out.empty())
-        if (const std::string e = check_writable(o.out); !e.empty()) {
-            print_error(e);
-            return k_exit_bad_input;
-        }
-    if (!o.obj_dir.empty()) {
-        std::error_code ec;
-        if (std::filesystem::exists(o.obj_dir, ec) && !std::filesystem::is_directory(o.obj_dir, ec)) {
-            print_error(o.obj_dir + ": exists and is not a directory");
-            return k_exit_bad_input;
-        }
     }
     const Result<Scene> scene = load_scene(o.scene);
     if (!scene) {
@@ -81,53 +134,20 @@ int export_command(const ExportOptions& o)
         if (b.render_mesh)
             meshes.push_back({b.def.name, b.render_mesh});
     const Result<ExportRecording> rec = record_animation(*world, def, meshes);
-    const double record_seconds = seconds_since(start);
+    ExportTimes times;
+    times.record_seconds = seconds_since(start);
     if (!rec) {
         print_error(o.scene + ": " + rec.error().message());
         return k_exit_bad_input;
     }
     start = std::chrono::steady_clock::now();
     size_t glb_bytes = 0;
-    if (!o.out.empty()) {
-        if (Status s = write_glb(*rec, o.out); !s) {
-            print_error(s.error().message());
-            return k_exit_internal;
-        }
-        glb_bytes = static_cast<size_t>(std::filesystem::file_size(o.out));
+    if (const std::string e = write_export(o, *rec, glb_bytes); !e.empty()) {
+        print_error(e);
+        return k_exit_internal;
     }
-    if (!o.obj_dir.empty())
-        if (Status s = write_obj_sequence(*rec, o.obj_dir); !s) {
-            print_error(s.error().message());
-            return k_exit_internal;
-        }
-    const double write_seconds = seconds_since(start);
-    size_t targets = 0, vertices = 0;
-    for (const ExportBody& b : rec->bodies) {
-        targets += b.mode_displacements.size();
-        vertices += b.mesh.positions.size();
-    }
-    if (o.json) {
-        const nlohmann::json report = {{"scene", o.scene},
-                                       {"glb", o.out},
-                                       {"obj_dir", o.obj_dir},
-                                       {"bodies", rec->bodies.size()},
-                                       {"frames", rec->times.size()},
-                                       {"last_time", rec->times.back()},
-                                       {"vertices", vertices},
-                                       {"morph_targets", targets},
-                                       {"glb_bytes", glb_bytes},
-                                       {"record_seconds", record_seconds},
-                                       {"write_seconds", write_seconds}};
-        std::printf("%s\n", json_text(report).c_str());
-        return k_exit_ok;
-    }
-    std::printf("%s: %zu bodies, %zu vertices, %zu morph targets, %zu frames over %.4g s; run %.3f s, "
-                "written %.3f s",
-                o.scene.c_str(), rec->bodies.size(), vertices, targets, rec->times.size(), rec->times.back(),
-                record_seconds, write_seconds);
-    if (!o.out.empty())
-        std::printf("; %s %zu bytes", o.out.c_str(), glb_bytes);
-    std::printf("\n");
+    times.write_seconds = seconds_since(start);
+    print_export_report(o, *rec, glb_bytes, times);
     return k_exit_ok;
 }
 

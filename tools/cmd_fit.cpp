@@ -59,6 +59,93 @@ std::string mesh_in_body_frame_obj(const TriangleMesh& mesh, const FitResult& f)
     return out;
 }
 
+/// Checks --up, --attach and --scene up front and fills the import's up axis; an error, or empty.
+std::string check_fit_options(const FitOptions& o, ImportDef& import_def)
+{
+    if (!parse_up_axis(o.up, import_def.up_axis))
+        return "--up: expected one of from_file, +x, +y, +z, -x, -y, -z, found " + o.up;
+    if (o.attach && (o.scene_out.empty() || o.parts != 1))
+        return "--attach: needs --scene OUT.json and one part (--parts 1)";
+    if (!o.scene_out.empty())
+        return check_writable(o.scene_out);
+    return {};
+}
+
+/// The fitted parts as scene bodies and report rows, and their worst errors.
+struct FitTally {
+    nlohmann::json bodies = nlohmann::json::array();
+    nlohmann::json parts = nlohmann::json::array();
+    double worst_rms = 0.0, worst_relative = 0.0;
+    int iterations = 0;
+    bool acceptable = true;
+};
+
+FitTally tally_fits(const std::vector<FitResult>& fits, const std::string& stem, const std::string& mesh)
+{
+    FitTally t;
+    for (size_t k = 0; k < fits.size(); ++k) {
+        const FitResult& f = fits[k];
+        const std::string name = fits.size() == 1 ? stem : stem + "_" + std::to_string(k);
+        t.bodies.push_back(body_json(f, name, mesh));
+        t.parts.push_back(report_json(f, name));
+        t.worst_rms = std::max(t.worst_rms, f.rms_m);
+        t.worst_relative = std::max(t.worst_relative, f.rms_relative);
+        t.iterations += f.iterations;
+        t.acceptable = t.acceptable && f.acceptable;
+    }
+    return t;
+}
+
+/// --attach: writes the mesh in the fitted body's frame next to the scene and names it as the body's
+/// render mesh. Written first: the scene names it, so a scene on disk never points at a missing mesh.
+/// An error message, or empty.
+std::string attach_mesh(const FitOptions& o, const std::string& stem, const TriangleMesh& mesh,
+                        const FitResult& fit, nlohmann::json& body)
+{
+    const std::filesystem::path scene_path(o.scene_out);
+    const std::string file = scene_path.stem().string() + "_" + stem + ".obj";
+    const std::string path = (scene_path.parent_path() / file).string();
+    if (std::string e = write_file_atomically(path, mesh_in_body_frame_obj(mesh, fit)); !e.empty())
+        return e;
+    body["mesh"] = file;
+    return {};
+}
+
+/// With several parts the summary is the worst part's error, so a bad part is never averaged away.
+nlohmann::json fit_report(const std::string& mesh_file, const ImportedMesh& mesh, const FitTally& t,
+                          const FitDef& def, double seconds)
+{
+    return {{"mesh", mesh_file},
+            {"import",
+             {{"format", mesh.format},
+              {"scale", mesh.scale},
+              {"up_axis", up_axis_name(mesh.up_axis)},
+              {"vertices", mesh.mesh.positions.size()},
+              {"triangles", mesh.mesh.indices.size() / 3}}},
+            {"rms_m", t.worst_rms},
+            {"rms_relative", t.worst_relative},
+            {"iterations", t.iterations},
+            {"acceptable", t.acceptable},
+            {"acceptable_rms_relative", def.acceptable_rms_relative},
+            {"seconds", seconds},
+            {"parts", t.parts}};
+}
+
+void print_fit_text(const std::string& mesh_file, const ImportedMesh& mesh,
+                    const std::vector<FitResult>& fits, const nlohmann::json& parts, double seconds)
+{
+    std::printf("%s: %zu vertices, %zu triangles (%s, scale %g m/unit, up %s), fitted in %.3f s\n",
+                mesh_file.c_str(), mesh.mesh.positions.size(), mesh.mesh.indices.size() / 3,
+                mesh.format.c_str(), mesh.scale, up_axis_name(mesh.up_axis), seconds);
+    for (size_t k = 0; k < fits.size(); ++k) {
+        const FitResult& f = fits[k];
+        std::printf("  %-16s radii [%.4g %.4g %.4g] m, exponents [%.3f %.3f], rms %.3g m (%.2f %%)%s\n",
+                    parts[k]["name"].get<std::string>().c_str(), f.shape.radii.x, f.shape.radii.y,
+                    f.shape.radii.z, f.shape.epsilon1, f.shape.epsilon2, f.rms_m, 100.0 * f.rms_relative,
+                    f.acceptable ? "" : "  NOT a good fit");
+    }
+}
+
 } // namespace
 
 CLI::App* add_fit_command(CLI::App& app, FitOptions& o)
@@ -88,19 +175,10 @@ int fit_command(const FitOptions& o)
 {
     ImportDef import_def = default_import_def();
     import_def.scale = o.scale;
-    if (!parse_up_axis(o.up, import_def.up_axis)) {
-        print_error("--up: expected one of from_file, +x, +y, +z, -x, -y, -z, found " + o.up);
+    if (const std::string e = check_fit_options(o, import_def); !e.empty()) {
+        print_error(e);
         return k_exit_bad_input;
     }
-    if (o.attach && (o.scene_out.empty() || o.parts != 1)) {
-        print_error("--attach: needs --scene OUT.json and one part (--parts 1)");
-        return k_exit_bad_input;
-    }
-    if (!o.scene_out.empty())
-        if (const std::string e = check_writable(o.scene_out); !e.empty()) {
-            print_error(e);
-            return k_exit_bad_input;
-        }
     const Result<ImportedMesh> mesh = import_mesh(o.mesh, import_def);
     if (!mesh) {
         print_error(mesh.error().message());
@@ -117,69 +195,25 @@ int fit_command(const FitOptions& o)
         return k_exit_bad_input;
     }
     const std::string stem = o.name.empty() ? std::filesystem::path(o.mesh).stem().string() : o.name;
-    nlohmann::json bodies = nlohmann::json::array(), parts = nlohmann::json::array();
-    double worst_rms = 0.0, worst_relative = 0.0;
-    int iterations = 0;
-    bool acceptable = true;
-    for (size_t k = 0; k < fits->size(); ++k) {
-        const FitResult& f = (*fits)[k];
-        const std::string name = fits->size() == 1 ? stem : stem + "_" + std::to_string(k);
-        bodies.push_back(body_json(f, name, o.mesh));
-        parts.push_back(report_json(f, name));
-        worst_rms = std::max(worst_rms, f.rms_m);
-        worst_relative = std::max(worst_relative, f.rms_relative);
-        iterations += f.iterations;
-        acceptable = acceptable && f.acceptable;
-    }
-    if (o.attach) {
-        // Written first: the scene names it, so a scene on disk never points at a missing mesh.
-        const std::filesystem::path scene_path(o.scene_out);
-        const std::string file = scene_path.stem().string() + "_" + stem + ".obj";
-        const std::string path = (scene_path.parent_path() / file).string();
-        if (const std::string e =
-                write_file_atomically(path, mesh_in_body_frame_obj(mesh->mesh, fits->front()));
+    FitTally tally = tally_fits(*fits, stem, o.mesh);
+    if (o.attach)
+        if (const std::string e = attach_mesh(o, stem, mesh->mesh, fits->front(), tally.bodies[0]);
             !e.empty()) {
             print_error(e);
             return k_exit_internal;
         }
-        bodies[0]["mesh"] = file;
-    }
     const nlohmann::json scene = {{"comment", "superquadrics fitted by supermodal fit to " + o.mesh},
-                                  {"bodies", bodies}};
-    // With several parts the summary is the worst part's error, so a bad part is never averaged away.
-    const nlohmann::json report = {{"mesh", o.mesh},
-                                   {"import",
-                                    {{"format", mesh->format},
-                                     {"scale", mesh->scale},
-                                     {"up_axis", up_axis_name(mesh->up_axis)},
-                                     {"vertices", mesh->mesh.positions.size()},
-                                     {"triangles", mesh->mesh.indices.size() / 3}}},
-                                   {"rms_m", worst_rms},
-                                   {"rms_relative", worst_relative},
-                                   {"iterations", iterations},
-                                   {"acceptable", acceptable},
-                                   {"acceptable_rms_relative", def.acceptable_rms_relative},
-                                   {"seconds", seconds},
-                                   {"parts", parts}};
+                                  {"bodies", tally.bodies}};
+    const nlohmann::json report = fit_report(o.mesh, *mesh, tally, def, seconds);
     if (!o.scene_out.empty())
         if (const std::string e = write_file_atomically(o.scene_out, json_text(scene) + "\n"); !e.empty()) {
             print_error(e);
             return k_exit_internal;
         }
-    if (o.json) {
+    if (o.json)
         std::printf("%s\n", json_text(nlohmann::json{{"scene", scene}, {"fit", report}}).c_str());
-        return k_exit_ok;
-    }
-    std::printf("%s: %zu vertices, %zu triangles (%s, scale %g m/unit, up %s), fitted in %.3f s\n",
-                o.mesh.c_str(), mesh->mesh.positions.size(), mesh->mesh.indices.size() / 3,
-                mesh->format.c_str(), mesh->scale, up_axis_name(mesh->up_axis), seconds);
-    for (size_t k = 0; k < fits->size(); ++k) {
-        const FitResult& f = (*fits)[k];
-        std::printf("  %-16s radii [%.4g %.4g %.4g] m, exponents [%.3f %.3f], rms %.3g m (%.2f %%)%s\n",
-                    parts[k]["name"].get<std::string>().c_str(), f.shape.radii.x, f.shape.radii.y,
-                    f.shape.radii.z, f.shape.epsilon1, f.shape.epsilon2, f.rms_m, 100.0 * f.rms_relative,
-                    f.acceptable ? "" : "  NOT a good fit");
-    }
+    else
+        print_fit_text(o.mesh, *mesh, *fits, tally.parts, seconds);
     return k_exit_ok;
 }
 

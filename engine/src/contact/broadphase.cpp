@@ -54,17 +54,10 @@ void add_pair(const BroadphaseProxy& p, const BroadphaseProxy& q, std::vector<Bo
                                                   : BodyPair{q.entity, p.entity});
 }
 
-} // namespace
-
-void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, BroadphaseScratch& io_scratch,
-                            std::vector<BodyPair>& out_pairs)
+// Uniform grid cell size [m]: twice the median finite box extent (nth_element on values: the same
+// result for any input order); 1 when no box has a positive finite extent.
+double grid_cell(std::span<const BroadphaseProxy> proxies, std::vector<double>& extents)
 {
-    out_pairs.clear();
-    if (proxies.size() < 2)
-        return;
-    // Uniform grid: cell size from the median finite box extent (nth_element on values: the same
-    // result for any input order).
-    std::vector<double>& extents = io_scratch.extents;
     extents.clear();
     for (const BroadphaseProxy& p : proxies) {
         const double e = max_extent(p.box);
@@ -78,17 +71,21 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
         if (*mid > 0.0)
             cell = k_cell_per_extent * *mid;
     }
+    return cell;
+}
+
+// One entry per (box, cell it covers), sorted by cell then proxy; boxes too big to bin go to `big`
+// (ascending).
+void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, BroadphaseScratch& io)
+{
     const double inv_cell = 1.0 / cell;
     const double big_extent = k_big_cells * cell;
-
-    std::vector<BroadphaseScratch::Entry>& entries = io_scratch.entries;
-    std::vector<uint32_t>& big = io_scratch.big;
-    entries.clear();
-    big.clear();
+    io.entries.clear();
+    io.big.clear();
     for (uint32_t i = 0; i < proxies.size(); ++i) {
         const Aabb& b = proxies[i].box;
         if (!(max_extent(b) <= big_extent) || !is_finite(b.min) || !is_finite(b.max)) {
-            big.push_back(i);
+            io.big.push_back(i);
             continue;
         }
         const int64_t x0 = cell_coord(b.min.x, inv_cell), x1 = cell_coord(b.max.x, inv_cell);
@@ -97,13 +94,20 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
         for (int64_t x = x0; x <= x1; ++x)
             for (int64_t y = y0; y <= y1; ++y)
                 for (int64_t z = z0; z <= z1; ++z)
-                    entries.push_back({cell_key(x, y, z), i});
+                    io.entries.push_back({cell_key(x, y, z), i});
     }
-    std::sort(entries.begin(), entries.end(), [](const auto& l, const auto& r) {
+    std::sort(io.entries.begin(), io.entries.end(), [](const auto& l, const auto& r) {
         return l.key != r.key ? l.key < r.key : l.proxy < r.proxy;
     });
-    // Pairs within each cell; a pair sharing several cells is reported only in the cell holding the
-    // corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap.
+}
+
+// Pairs within each cell; a pair sharing several cells is reported only in the cell holding the
+// corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap.
+void pairs_in_cells(std::span<const BroadphaseProxy> proxies,
+                    std::span<const BroadphaseScratch::Entry> entries, double cell,
+                    std::vector<BodyPair>& out_pairs)
+{
+    const double inv_cell = 1.0 / cell;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin + 1;
         while (end < entries.size() && entries[end].key == entries[begin].key)
@@ -121,7 +125,12 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
         }
         begin = end;
     }
-    // Big boxes (planes, huge static bodies) against everything, each pair once.
+}
+
+// Big boxes (planes, huge static bodies) against everything, each pair once.
+void pairs_of_big(std::span<const BroadphaseProxy> proxies, std::span<const uint32_t> big,
+                  std::vector<BodyPair>& out_pairs)
+{
     for (size_t bi = 0; bi < big.size(); ++bi) {
         const BroadphaseProxy& p = proxies[big[bi]];
         for (uint32_t j = 0; j < proxies.size(); ++j) {
@@ -131,6 +140,20 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
             add_pair(p, proxies[j], out_pairs);
         }
     }
+}
+
+} // namespace
+
+void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, BroadphaseScratch& io_scratch,
+                            std::vector<BodyPair>& out_pairs)
+{
+    out_pairs.clear();
+    if (proxies.size() < 2)
+        return;
+    const double cell = grid_cell(proxies, io_scratch.extents);
+    bin_boxes(proxies, cell, io_scratch);
+    pairs_in_cells(proxies, io_scratch.entries, cell, out_pairs);
+    pairs_of_big(proxies, io_scratch.big, out_pairs);
     std::sort(out_pairs.begin(), out_pairs.end(),
               [](const BodyPair& l, const BodyPair& r) { return l.key() < r.key(); });
 }

@@ -76,37 +76,82 @@ double max_inverse_inertia(const BodyModel& m)
     return std::max({ii.x, ii.y, ii.z});
 }
 
-struct RollInput {
+// The two bodies of a pair, dereferenced once.
+struct PairSides {
     const BodyModel& ma;
     const BodyModel& mb;
+    const Pose& pa;
+    const Pose& pb;
     const Velocity& va;
     const Velocity& vb;
-    Vec3 n;              // contact normal, b towards a
-    double normal_force; // [N]
-    double omega;        // spring rate [rad/s]
 };
+
+// The pair's contact frame: the points' weighted mean normal and centroid.
+struct PairFrame {
+    Vec3 n{};                // unit contact normal, b towards a
+    Vec3 centroid{};         // where friction, torsion and the summary act [m], world
+    Vec3 ra{}, rb{};         // centroid from each centre of mass [m], world
+    double weight_sum = 0.0; // Σ of the points' weights [-]
+};
+
+PairFrame pair_frame(std::span<const ContactPoint> points, const Pose& pa, const Pose& pb)
+{
+    PairFrame f;
+    Vec3 normal_sum{};
+    for (const ContactPoint& cp : points) {
+        normal_sum += cp.weight * cp.normal;
+        f.centroid += cp.weight * cp.point;
+        f.weight_sum += cp.weight;
+    }
+    f.centroid = f.centroid / f.weight_sum;
+    f.n = normalized(normal_sum);
+    f.ra = f.centroid - pa.position;
+    f.rb = f.centroid - pb.position;
+    return f;
+}
+
+// Modes are lighter than the rigid body: they join the effective mass. Each point loads the modes
+// through its own φ(point), so the weighted mean over the points (along each point's normal; d = 0:
+// any direction) is taken, a trace bound on the fastest mode the pair's springs excite. The
+// centroid's alone is not: on a star-shaped (ε = 3) modal body it fell between two tips, where φ is
+// small, and the spring was stiff enough to throw the tips' modes to 33× the drop energy in one step
+// (docs/stability.md). 0 without modes [1/kg].
+double modal_inverse_mass(const PairModes* modes, const BodyPair& pair, std::span<const ContactPoint> points,
+                          double weight_sum, bool along_normal)
+{
+    if (modes == nullptr)
+        return 0.0;
+    double sum = 0.0;
+    for (const ContactPoint& cp : points) {
+        const Vec3 d = along_normal ? cp.normal : Vec3{};
+        sum += cp.weight * (modes->inverse_mass(modes->ctx, pair.a, cp.point, d) +
+                            modes->inverse_mass(modes->ctx, pair.b, cp.point, d));
+    }
+    return sum / weight_sum;
+}
 
 // Rolling resistance: a spring on the relative rolling angle (the tangential part of the relative
 // spin), clamped to ℓ·F_n with ℓ the pair's lever arm, the torque a contact patch offset by ℓ ahead of
 // the centre exerts. Sets out.torque_a/b (zero when the pair has none) and the anchor's roll.
-void add_rolling_resistance(const RollInput& in, PairAnchor& anchor, PairForce& out)
+void add_rolling_resistance(const PairSides& s, const Vec3& n, double normal_force, double omega,
+                            PairAnchor& anchor, PairForce& out)
 {
     out.torque_a = out.torque_b = {};
-    const double ell = std::max(in.ma.rolling_resistance, in.mb.rolling_resistance);
+    const double ell = std::max(s.ma.rolling_resistance, s.mb.rolling_resistance);
     // The smallest inertia about any tangent axis: the spring's frequency stays at or under ω for
     // every axis, and rolling (which also moves the centre of mass) is slower still.
-    const double inv_j = max_inverse_inertia(in.ma) + max_inverse_inertia(in.mb);
-    out.has_roll = ell > 0.0 && in.normal_force > 0.0 && inv_j > 0.0;
+    const double inv_j = max_inverse_inertia(s.ma) + max_inverse_inertia(s.mb);
+    out.has_roll = ell > 0.0 && normal_force > 0.0 && inv_j > 0.0;
     if (!out.has_roll) {
         anchor.roll = {};
         return;
     }
     const double j = 1.0 / inv_j;
-    const double k = j * in.omega * in.omega, c = 2.0 * k_tangential_damping_ratio * j * in.omega;
-    const Vec3 w_rel = in.va.angular - in.vb.angular;
-    const Vec3 w_t = w_rel - dot(w_rel, in.n) * in.n;
+    const double k = j * omega * omega, c = 2.0 * k_tangential_damping_ratio * j * omega;
+    const Vec3 w_rel = s.va.angular - s.vb.angular;
+    const Vec3 w_t = w_rel - dot(w_rel, n) * n;
     Vec3 tau = -k * anchor.roll - c * w_t;
-    const double limit = ell * in.normal_force;
+    const double limit = ell * normal_force;
     if (length(tau) > limit) {
         tau = tau * (limit / length(tau));
         anchor.roll = -(tau + c * w_t) / k; // rolls on: the anchor follows
@@ -182,6 +227,168 @@ HeldSpring hold_stiffness(double k_target, double area, const PairAnchor* old,
     return {old->stiffness + rise, std::max(0.0, old->credit - 0.5 * rise * stored)};
 }
 
+// The pair's normal spring–dashpot as its points feel it.
+struct NormalLaw {
+    bool hold = false;    // the spring is held per unit of point area (hold_stiffness)
+    bool clamped = false; // material stiffness cut to the cap
+    double k = 0.0;       // spring per unit of point weight when not held [N/m]
+    HeldSpring held{};    // the held spring, when held
+    double omega = 0.0;   // rate of the spring actually used [rad/s]
+    double c = 0.0;       // dashpot per unit of point weight [N·s/m]
+    /// The spring's stiffness at point cp [N/m].
+    [[nodiscard]] double stiffness_at(const ContactPoint& cp) const
+    {
+        return hold ? held.per_area * cp.area : k * cp.weight;
+    }
+};
+
+// Effective masses at the contact, rotation included, so a push off the centre of mass (an edge, a
+// corner) gets a spring its own inertia can carry at this substep; modal_n: the modes' share
+// (modal_inverse_mass) [1/kg].
+NormalLaw normal_law(const PenaltyParams& params, const PairSides& s, const PairFrame& f, double modal_n,
+                     std::span<const ContactPoint> points, const PairAnchor* old_anchor, ZetaCache& io_zeta)
+{
+    const double m_eff =
+        1.0 / (inverse_mass_at(s.ma, s.pa, f.ra, f.n) + inverse_mass_at(s.mb, s.pb, f.rb, f.n) + modal_n);
+    const double zeta = params.damping_ratio >= 0.0
+                            ? params.damping_ratio
+                            : io_zeta.get(std::max(s.ma.restitution, s.mb.restitution));
+    const NormalSpring spring = normal_spring(params, s.ma, s.mb, m_eff, points, f.weight_sum);
+    NormalLaw law;
+    law.clamped = spring.clamped;
+    law.k = spring.k;
+    // Frequency mode holds a rigid pair's spring per unit of point area (hold_stiffness). Not held:
+    // Hertz springs (their secant stiffness rises with depth by design), and pairs with a modal body,
+    // whose m_eff includes the modes: adaptive bodies change their mode count mid-contact, and holding
+    // the spring there moved ball_on_board's strike (0.24 → 0.39 mm off the 16-mode reference at a
+    // 0.3 mm budget); the stability map's modal slices never gained energy without it.
+    double area = 0.0;
+    for (const ContactPoint& cp : points)
+        area += cp.area;
+    law.hold = !params.material && area > 0.0 && modal_n == 0.0;
+    law.held = law.hold ? hold_stiffness(spring.k, area, old_anchor, points) : HeldSpring{};
+    const double k_pair = law.hold ? law.held.per_area * area : spring.k;
+    // The dashpot works on the spring actually used, so a held (softer) spring keeps its restitution.
+    law.omega = k_pair == spring.k ? spring.omega : std::sqrt(k_pair / m_eff);
+    // The dashpot is explicit: a body feels the sum of its contacts' c·h/m_eff, and in a stack every
+    // middle box has two, whose Nyquist mode (neighbours moving against each other) flips the velocity
+    // every step once the sum passes 1 (measured: ten boxes, e = 0.2, c·h/m_eff = 0.92 per contact, in
+    // a period-2 limit cycle at 0.19 m/s). Capped at k_max_dashpot_step for rigid pairs. Not for pairs
+    // with a modal body: the modes absorb the dashpot's kick, and the cap starves them of damping
+    // (measured: a soft sphere kept bouncing at 0.2–0.3 m/s for 12 s with it, rests within 3 s without).
+    const double c_free = 2.0 * zeta * m_eff * law.omega;
+    law.c = modal_n > 0.0 ? c_free : std::min(c_free, k_max_dashpot_step * m_eff / params.h);
+    return law;
+}
+
+// Sums of the points' normal forces.
+struct NormalForces {
+    Vec3 total{};              // Σ force on a [N], world
+    Vec3 torque_a{};           // about a's centre of mass [N·m], world
+    Vec3 torque_b{};           // about b's centre of mass [N·m], world
+    double normal_force = 0.0; // Σ magnitude [N]
+    double deepest = 0.0;      // [m]
+    double dissipated = 0.0;   // by the dashpot or a let-go spring over the substep [J]
+};
+
+// Each point's spring–dashpot, written to out_point_force (one per point, when given).
+NormalForces normal_forces(const NormalLaw& law, const PairSides& s, std::span<const ContactPoint> points,
+                           double h, std::span<double> out_point_force)
+{
+    NormalForces out;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const ContactPoint& cp = points[i];
+        const double vn =
+            dot(velocity_at(s.va, s.pa.position, cp.point) - velocity_at(s.vb, s.pb.position, cp.point),
+                cp.normal);
+        // No pull: a separating contact whose dashpot would exceed its spring just lets go.
+        const double spring_force = law.stiffness_at(cp) * cp.depth;
+        const double f = std::max(0.0, spring_force - law.c * vn * cp.weight);
+        out.dissipated += (spring_force - f) * vn * h; // ≥ 0: the dashpot, or a let-go spring
+        const Vec3 fv = f * cp.normal;
+        out.total += fv;
+        out.torque_a += cross(cp.point - s.pa.position, fv);
+        out.torque_b -= cross(cp.point - s.pb.position, fv);
+        if (i < out_point_force.size())
+            out_point_force[i] = f;
+        out.normal_force += f;
+        out.deepest = std::max(out.deepest, cp.depth);
+    }
+    return out;
+}
+
+// The pair's anchor going into this substep's tangential springs: the old one turned into today's
+// contact plane, with the held normal spring and the energy credit it may spend.
+PairAnchor carried_anchor(uint64_t key, const PairAnchor* old_anchor, const Vec3& n, const NormalLaw& law,
+                          double dissipated)
+{
+    PairAnchor anchor{key, {}};
+    anchor.stiffness = law.held.per_area;
+    anchor.credit = law.hold ? law.held.credit + dissipated : 0.0;
+    if (old_anchor != nullptr) {
+        anchor.spring = old_anchor->spring - dot(old_anchor->spring, n) * n; // keep it in today's plane
+        anchor.twist = old_anchor->twist;
+        anchor.roll = old_anchor->roll - dot(old_anchor->roll, n) * n;
+    }
+    return anchor;
+}
+
+// Friction: a tangential spring anchored where the contact stuck, clamped to the Coulomb cone
+// (`limit` [N]); modal_t: the modes' inverse mass over any direction [1/kg]. The force on a at the
+// centroid [N], world; a sliding contact's anchor follows.
+Vec3 friction_force(const PairSides& s, const PairFrame& f, double modal_t, double omega_t, double limit,
+                    PairAnchor& anchor)
+{
+    const Vec3 v_rel =
+        velocity_at(s.va, s.pa.position, f.centroid) - velocity_at(s.vb, s.pb.position, f.centroid);
+    const Vec3 v_t = v_rel - dot(v_rel, f.n) * f.n;
+    const double m_t =
+        1.0 / (inverse_mass_at(s.ma, s.pa, f.ra, {}) + inverse_mass_at(s.mb, s.pb, f.rb, {}) + modal_t);
+    const double kt = m_t * omega_t * omega_t;
+    const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;
+    Vec3 ft = -kt * anchor.spring - ct * v_t;
+    if (length(ft) > limit) {
+        ft = limit > 0.0 ? ft * (limit / length(ft)) : Vec3{};
+        anchor.spring = limit > 0.0 ? -(ft + ct * v_t) / kt : Vec3{}; // slide: the anchor follows
+    }
+    return ft;
+}
+
+struct TwistTorque {
+    bool active = false; // the pair has a patch and a body that can turn about the normal
+    double tau = 0.0;    // torque on a about the normal [N·m]
+};
+
+// Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
+// friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the patch's
+// second moment; `limit` = μ·F [N]). Without it a single friction anchor lets a resting face spin up.
+TwistTorque twist_torque(const PairSides& s, const PairFrame& f, std::span<const ContactPoint> points,
+                         double omega_t, double limit, PairAnchor& anchor)
+{
+    double patch_rho2 = 0.0;
+    for (const ContactPoint& cp : points) {
+        const Vec3 d = cp.point - f.centroid;
+        patch_rho2 += cp.weight * (dot(d, d) - dot(d, f.n) * dot(d, f.n)) / f.weight_sum;
+    }
+    const double inv_j = inverse_twist_inertia(s.ma, s.pa, f.n) + inverse_twist_inertia(s.mb, s.pb, f.n);
+    TwistTorque out;
+    out.active = patch_rho2 > 0.0 && inv_j > 0.0;
+    if (!out.active) {
+        anchor.twist = 0.0;
+        return out;
+    }
+    const double j = 1.0 / inv_j;
+    const double k_tw = j * omega_t * omega_t, c_tw = 2.0 * k_tangential_damping_ratio * j * omega_t;
+    const double spin = dot(s.va.angular - s.vb.angular, f.n);
+    out.tau = -k_tw * anchor.twist - c_tw * spin;
+    const double tau_limit = (2.0 / 3.0) * limit * std::sqrt(2.0 * patch_rho2);
+    if (std::abs(out.tau) > tau_limit) {
+        out.tau = std::copysign(tau_limit, out.tau);
+        anchor.twist = -(out.tau + c_tw * spin) / k_tw;
+    }
+    return out;
+}
+
 } // namespace
 
 double ZetaCache::get(double e)
@@ -201,157 +408,46 @@ PairForce penalty_pair(const PenaltyParams& params, const BodyPair& pair, const 
                        std::span<double> out_point_force)
 {
     PairForce out;
-    const BodyModel& ma = *a.model;
-    const BodyModel& mb = *b.model;
-    if (points.empty() || !(ma.inv_mass + mb.inv_mass > 0.0))
+    if (points.empty() || !(a.model->inv_mass + b.model->inv_mass > 0.0))
         return out;
-    const Pose& pa = *a.pose;
-    const Pose& pb = *b.pose;
-    const Velocity& va = *a.velocity;
-    const Velocity& vb = *b.velocity;
-    Vec3 normal_sum{}, centroid{};
-    double weight_sum = 0.0;
-    for (const ContactPoint& cp : points) {
-        normal_sum += cp.weight * cp.normal;
-        centroid += cp.weight * cp.point;
-        weight_sum += cp.weight;
-    }
-    centroid = centroid / weight_sum;
-    const Vec3 n = normalized(normal_sum);
-    const Vec3 ra = centroid - pa.position, rb = centroid - pb.position;
-    // Effective masses at the contact, rotation included, so a push off the centre of mass (an edge,
-    // a corner) gets a spring its own inertia can carry at this substep.
-    // Modes are lighter than the rigid body: they join the effective mass (modal_inverse_mass). Each
-    // point loads the modes through its own φ(point), so the weighted mean over the points (along each
-    // point's normal; d = 0: any direction) is taken, a trace bound on the fastest mode the pair's springs
-    // excite. The centroid's alone is not: on a star-shaped (ε = 3) modal body it fell between two tips,
-    // where φ is small, and the spring was stiff enough to throw the tips' modes to 33× the drop energy
-    // in one step (docs/stability.md).
-    auto modal_inv = [&](bool along_normal) {
-        if (modes == nullptr)
-            return 0.0;
-        double sum = 0.0;
-        for (const ContactPoint& cp : points) {
-            const Vec3 d = along_normal ? cp.normal : Vec3{};
-            sum += cp.weight * (modes->inverse_mass(modes->ctx, pair.a, cp.point, d) +
-                                modes->inverse_mass(modes->ctx, pair.b, cp.point, d));
-        }
-        return sum / weight_sum;
-    };
-    const double modal_n = modal_inv(true);
-    const double m_eff = 1.0 / (inverse_mass_at(ma, pa, ra, n) + inverse_mass_at(mb, pb, rb, n) + modal_n);
-    const double zeta = params.damping_ratio >= 0.0 ? params.damping_ratio
-                                                    : io_zeta.get(std::max(ma.restitution, mb.restitution));
-    const NormalSpring spring = normal_spring(params, ma, mb, m_eff, points, weight_sum);
-    out.stiffness_clamped = spring.clamped;
-    // Frequency mode holds a rigid pair's spring per unit of point area (hold_stiffness). Not held:
-    // Hertz springs (their secant stiffness rises with depth by design), and pairs with a modal body,
-    // whose m_eff includes the modes: adaptive bodies change their mode count mid-contact, and holding
-    // the spring there moved ball_on_board's strike (0.24 → 0.39 mm off the 16-mode reference at a
-    // 0.3 mm budget); the stability map's modal slices never gained energy without it.
-    double area = 0.0;
-    for (const ContactPoint& cp : points)
-        area += cp.area;
-    const bool hold = !params.material && area > 0.0 && modal_n == 0.0;
-    const HeldSpring held = hold ? hold_stiffness(spring.k, area, old_anchor, points) : HeldSpring{};
-    const double k_pair = hold ? held.per_area * area : spring.k;
-    // The dashpot works on the spring actually used, so a held (softer) spring keeps its restitution.
-    const double omega = k_pair == spring.k ? spring.omega : std::sqrt(k_pair / m_eff);
-    // The dashpot is explicit: a body feels the sum of its contacts' c·h/m_eff, and in a stack every
-    // middle box has two, whose Nyquist mode (neighbours moving against each other) flips the velocity
-    // every step once the sum passes 1 (measured: ten boxes, e = 0.2, c·h/m_eff = 0.92 per contact, in
-    // a period-2 limit cycle at 0.19 m/s). Capped at k_max_dashpot_step for rigid pairs. Not for pairs
-    // with a modal body: the modes absorb the dashpot's kick, and the cap starves them of damping
-    // (measured: a soft sphere kept bouncing at 0.2–0.3 m/s for 12 s with it, rests within 3 s without).
-    const double c_free = 2.0 * zeta * m_eff * omega;
-    const double c = modal_n > 0.0 ? c_free : std::min(c_free, k_max_dashpot_step * m_eff / params.h);
+    const PairSides s{*a.model, *b.model, *a.pose, *b.pose, *a.velocity, *b.velocity};
+    const PairFrame f = pair_frame(points, s.pa, s.pb);
+    const double modal_n = modal_inverse_mass(modes, pair, points, f.weight_sum, true);
+    const NormalLaw law = normal_law(params, s, f, modal_n, points, old_anchor, io_zeta);
+    out.stiffness_clamped = law.clamped;
+    const NormalForces normal = normal_forces(law, s, points, params.h, out_point_force);
 
-    Vec3 total{}, torque_a{}, torque_b{};
-    double normal_force = 0.0, deepest = 0.0, dissipated = 0.0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        const ContactPoint& cp = points[i];
-        const double vn =
-            dot(velocity_at(va, pa.position, cp.point) - velocity_at(vb, pb.position, cp.point), cp.normal);
-        // No pull: a separating contact whose dashpot would exceed its spring just lets go.
-        const double spring_force = (hold ? held.per_area * cp.area : spring.k * cp.weight) * cp.depth;
-        const double f = std::max(0.0, spring_force - c * vn * cp.weight);
-        dissipated += (spring_force - f) * vn * params.h; // ≥ 0: the dashpot, or a let-go spring
-        const Vec3 fv = f * cp.normal;
-        total += fv;
-        torque_a += cross(cp.point - pa.position, fv);
-        torque_b -= cross(cp.point - pb.position, fv);
-        if (i < out_point_force.size())
-            out_point_force[i] = f;
-        normal_force += f;
-        deepest = std::max(deepest, cp.depth);
+    PairAnchor anchor = carried_anchor(pair.key(), old_anchor, f.n, law, normal.dissipated);
+    const double omega_t = k_tangential_frequency_ratio * law.omega;
+    const double limit = std::sqrt(s.ma.friction * s.mb.friction) * normal.normal_force;
+    const double modal_t = modal_inverse_mass(modes, pair, points, f.weight_sum, false);
+    const Vec3 ft = friction_force(s, f, modal_t, omega_t, limit, anchor);
+    Vec3 torque_a = normal.torque_a, torque_b = normal.torque_b;
+    torque_a += cross(f.centroid - s.pa.position, ft);
+    torque_b -= cross(f.centroid - s.pb.position, ft);
+    const TwistTorque twist = twist_torque(s, f, points, omega_t, limit, anchor);
+    out.has_twist = twist.active;
+    if (twist.active) {
+        torque_a += twist.tau * f.n;
+        torque_b -= twist.tau * f.n;
     }
-
-    // Friction: a tangential spring anchored where the contact stuck, clamped to the Coulomb cone.
-    const double mu = std::sqrt(ma.friction * mb.friction);
-    PairAnchor anchor{pair.key(), {}};
-    anchor.stiffness = held.per_area;
-    anchor.credit = hold ? held.credit + dissipated : 0.0;
-    if (old_anchor != nullptr) {
-        anchor.spring = old_anchor->spring - dot(old_anchor->spring, n) * n; // keep it in today's plane
-        anchor.twist = old_anchor->twist;
-        anchor.roll = old_anchor->roll - dot(old_anchor->roll, n) * n;
-    }
-    const Vec3 v_rel = velocity_at(va, pa.position, centroid) - velocity_at(vb, pb.position, centroid);
-    const Vec3 v_t = v_rel - dot(v_rel, n) * n;
-    const double m_t =
-        1.0 / (inverse_mass_at(ma, pa, ra, {}) + inverse_mass_at(mb, pb, rb, {}) + modal_inv(false));
-    const double omega_t = k_tangential_frequency_ratio * omega;
-    const double kt = m_t * omega_t * omega_t;
-    const double ct = 2.0 * k_tangential_damping_ratio * m_t * omega_t;
-    Vec3 ft = -kt * anchor.spring - ct * v_t;
-    const double limit = mu * normal_force;
-    if (length(ft) > limit) {
-        ft = limit > 0.0 ? ft * (limit / length(ft)) : Vec3{};
-        anchor.spring = limit > 0.0 ? -(ft + ct * v_t) / kt : Vec3{}; // slide: the anchor follows
-    }
-    torque_a += cross(centroid - pa.position, ft);
-    torque_b -= cross(centroid - pb.position, ft);
-    // Torsional friction about the normal: a spring on the relative twist, clamped to what Coulomb
-    // friction over the patch can resist ((2/3)·μ·F·R for a disc of radius R = √(2ρ²), ρ² the
-    // patch's second moment). Without it a single friction anchor lets a resting face spin up.
-    double patch_rho2 = 0.0;
-    for (const ContactPoint& cp : points) {
-        const Vec3 d = cp.point - centroid;
-        patch_rho2 += cp.weight * (dot(d, d) - dot(d, n) * dot(d, n)) / weight_sum;
-    }
-    const double inv_j = inverse_twist_inertia(ma, pa, n) + inverse_twist_inertia(mb, pb, n);
-    out.has_twist = patch_rho2 > 0.0 && inv_j > 0.0;
-    if (out.has_twist) {
-        const double j = 1.0 / inv_j;
-        const double k_tw = j * omega_t * omega_t, c_tw = 2.0 * k_tangential_damping_ratio * j * omega_t;
-        const double spin = dot(va.angular - vb.angular, n);
-        double tau = -k_tw * anchor.twist - c_tw * spin;
-        const double tau_limit = (2.0 / 3.0) * limit * std::sqrt(2.0 * patch_rho2);
-        if (std::abs(tau) > tau_limit) {
-            tau = std::copysign(tau_limit, tau);
-            anchor.twist = -(tau + c_tw * spin) / k_tw;
-        }
-        torque_a += tau * n;
-        torque_b -= tau * n;
-    } else {
-        anchor.twist = 0.0;
-    }
-    add_rolling_resistance(RollInput{ma, mb, va, vb, n, normal_force, omega_t}, anchor, out);
+    add_rolling_resistance(s, f.n, normal.normal_force, omega_t, anchor, out);
     torque_a += out.torque_a;
     torque_b += out.torque_b;
+
     out.touching = true;
-    out.force_a = total + ft;
+    out.force_a = normal.total + ft;
     out.friction_force = ft;
     out.torque_a = torque_a;
     out.torque_b = torque_b;
-    out.normal_force = normal_force;
+    out.normal_force = normal.normal_force;
     out.anchor = anchor;
     out.info = {.a = pair.a,
                 .b = pair.b,
-                .point = centroid,
-                .normal = n,
-                .depth = deepest,
-                .force_on_a = total + ft,
+                .point = f.centroid,
+                .normal = f.n,
+                .depth = normal.deepest,
+                .force_on_a = normal.total + ft,
                 .point_count = static_cast<int>(points.size())};
     return out;
 }

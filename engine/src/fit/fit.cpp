@@ -134,6 +134,59 @@ fit::WeightedPoints mesh_points(const TriangleMesh& mesh, const FitDef& def)
     return fit::mesh_surface_points(mesh, def.max_points);
 }
 
+// 1-D k-means of the weighted coordinates t into `parts` clusters, centres started evenly over their
+// extent: each coordinate's cluster.
+std::vector<int> kmeans_1d(const std::vector<double>& t, const std::vector<double>& weights, int parts)
+{
+    double lo = 1e300, hi = -1e300;
+    for (const double x : t) {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+    }
+    std::vector<double> centre(static_cast<size_t>(parts), 0.0);
+    for (int k = 0; k < parts; ++k)
+        centre[size_t(k)] = lo + (hi - lo) * (k + 0.5) / parts;
+    std::vector<int> label(t.size(), 0);
+    for (int it = 0; it < 100; ++it) {
+        for (size_t i = 0; i < t.size(); ++i) // centres stay sorted, so the nearest is found by a scan
+            label[i] = int(std::min_element(
+                               centre.begin(), centre.end(),
+                               [&](double a, double b) { return std::abs(a - t[i]) < std::abs(b - t[i]); }) -
+                           centre.begin());
+        std::vector<double> sum(size_t(parts), 0.0), weight(size_t(parts), 0.0);
+        for (size_t i = 0; i < t.size(); ++i) {
+            sum[size_t(label[i])] += weights[i] * t[i];
+            weight[size_t(label[i])] += weights[i];
+        }
+        bool moved = false;
+        for (size_t k = 0; k < centre.size(); ++k)
+            if (weight[k] > 0.0 && sum[k] / weight[k] != centre[k]) {
+                centre[k] = sum[k] / weight[k];
+                moved = true;
+            }
+        if (!moved)
+            break;
+    }
+    return label;
+}
+
+// The points of cluster k, their weights renormalised to sum to 1.
+fit::WeightedPoints part_points(const fit::WeightedPoints& data, const std::vector<int>& label, int k)
+{
+    fit::WeightedPoints part;
+    for (size_t i = 0; i < label.size(); ++i)
+        if (label[i] == k) {
+            part.points.push_back(data.points[i]);
+            part.weights.push_back(data.weights[i]);
+        }
+    double total = 0.0;
+    for (double w : part.weights)
+        total += w;
+    for (double& w : part.weights)
+        w /= total;
+    return part;
+}
+
 } // namespace
 
 FitDef default_fit_def()
@@ -172,51 +225,12 @@ Result<std::vector<FitResult>> fit_superquadric_parts(const TriangleMesh& mesh, 
     const fit::Moments mom = fit::moments(data);
     const Vec3 axis = mom.axes.col(0);
     std::vector<double> t(data.points.size());
-    double lo = 1e300, hi = -1e300;
-    for (size_t i = 0; i < t.size(); ++i) {
+    for (size_t i = 0; i < t.size(); ++i)
         t[i] = dot(data.points[i] - mom.centroid, axis);
-        lo = std::min(lo, t[i]);
-        hi = std::max(hi, t[i]);
-    }
-    // 1-D k-means along the longest axis, centres started evenly over the extent.
-    std::vector<double> centre(static_cast<size_t>(parts), 0.0);
-    for (int k = 0; k < parts; ++k)
-        centre[size_t(k)] = lo + (hi - lo) * (k + 0.5) / parts;
-    std::vector<int> label(t.size(), 0);
-    for (int it = 0; it < 100; ++it) {
-        for (size_t i = 0; i < t.size(); ++i) // centres stay sorted, so the nearest is found by a scan
-            label[i] = int(std::min_element(
-                               centre.begin(), centre.end(),
-                               [&](double a, double b) { return std::abs(a - t[i]) < std::abs(b - t[i]); }) -
-                           centre.begin());
-        std::vector<double> sum(size_t(parts), 0.0), weight(size_t(parts), 0.0);
-        for (size_t i = 0; i < t.size(); ++i) {
-            sum[size_t(label[i])] += data.weights[i] * t[i];
-            weight[size_t(label[i])] += data.weights[i];
-        }
-        bool moved = false;
-        for (size_t k = 0; k < centre.size(); ++k)
-            if (weight[k] > 0.0 && sum[k] / weight[k] != centre[k]) {
-                centre[k] = sum[k] / weight[k];
-                moved = true;
-            }
-        if (!moved)
-            break;
-    }
+    const std::vector<int> label = kmeans_1d(t, data.weights, parts);
     std::vector<FitResult> out;
     for (int k = 0; k < parts; ++k) {
-        fit::WeightedPoints part;
-        for (size_t i = 0; i < t.size(); ++i)
-            if (label[i] == k) {
-                part.points.push_back(data.points[i]);
-                part.weights.push_back(data.weights[i]);
-            }
-        double total = 0.0;
-        for (double w : part.weights)
-            total += w;
-        for (double& w : part.weights)
-            w /= total;
-        Result<FitResult> r = fit_points(part, def);
+        Result<FitResult> r = fit_points(part_points(data, label, k), def);
         if (!r)
             return Error{"", "part " + std::to_string(k), r.error().what};
         out.push_back(*r);

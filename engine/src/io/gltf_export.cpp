@@ -144,6 +144,96 @@ Status check(const ExportRecording& rec)
     return {};
 }
 
+// The body's mesh: one triangle primitive, with a morph target per mode (named after its frequency).
+json body_mesh(GlbBuilder& g, const ExportBody& b)
+{
+    const size_t r = b.mode_displacements.size();
+    json prim = {{"attributes",
+                  {{"POSITION", g.add_floats(flatten(b.mesh.positions), 3, "VEC3", k_array_buffer)},
+                   {"NORMAL", g.add_floats(flatten(b.mesh.normals), 3, "VEC3", k_array_buffer)}}},
+                 {"indices", g.add_indices(b.mesh.indices)},
+                 {"mode", k_triangles}};
+    json mesh = {{"name", b.name}};
+    if (r > 0) {
+        json targets = json::array(), names = json::array();
+        for (size_t k = 0; k < r; ++k) {
+            targets.push_back(
+                {{"POSITION", g.add_floats(flatten(b.mode_displacements[k]), 3, "VEC3", k_array_buffer)}});
+            char name[64];
+            std::snprintf(name, sizeof name, "mode_%zu_%.4gHz", k,
+                          k < b.frequencies_hz.size() ? b.frequencies_hz[k] : 0.0);
+            names.push_back(name);
+        }
+        prim["targets"] = std::move(targets);
+        mesh["weights"] = std::vector<double>(r, 0.0);
+        mesh["extras"] = {{"targetNames", std::move(names)}}; // the de-facto convention for names
+    }
+    mesh["primitives"] = json::array({std::move(prim)});
+    return mesh;
+}
+
+// The animation's samplers and channels over the sample times (accessor time_acc).
+struct Animation {
+    int time_acc = 0;
+    json samplers = json::array();
+    json channels = json::array();
+};
+
+// Body bi's node at the first sample, and its animation: translation, rotation and mode weights.
+json body_node(GlbBuilder& g, const ExportBody& b, size_t bi, Animation& anim)
+{
+    const size_t r = b.mode_displacements.size();
+    std::vector<float> translation = flatten(b.positions), rotation;
+    rotation.reserve(b.orientations.size() * 4);
+    for (const Quat& q : b.orientations) // glTF order: x, y, z, w
+        for (double c : {q.x, q.y, q.z, q.w})
+            rotation.push_back(static_cast<float>(c));
+    json node = {{"name", b.name},
+                 {"mesh", bi},
+                 {"translation", {translation[0], translation[1], translation[2]}},
+                 {"rotation", {rotation[0], rotation[1], rotation[2], rotation[3]}}};
+    const auto channel = [&](int output, const char* path) {
+        anim.samplers.push_back({{"input", anim.time_acc}, {"output", output}, {"interpolation", "LINEAR"}});
+        anim.channels.push_back(
+            {{"sampler", anim.samplers.size() - 1}, {"target", {{"node", bi}, {"path", path}}}});
+    };
+    channel(g.add_floats(translation, 3, "VEC3", 0), "translation");
+    channel(g.add_floats(rotation, 4, "VEC4", 0), "rotation");
+    if (r > 0) {
+        // Weights output: frames × r scalars, frame-major, as the specification lays them out.
+        std::vector<float> weights(b.amplitudes.begin(), b.amplitudes.end());
+        channel(g.add_floats(weights, 1, "SCALAR", 0), "weights");
+        node["weights"] = std::vector<float>(weights.begin(), weights.begin() + static_cast<long>(r));
+    }
+    return node;
+}
+
+// The GLB container: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).
+Result<std::vector<uint8_t>> glb_container(std::string text, std::vector<uint8_t> bin)
+{
+    text.resize((text.size() + 3) / 4 * 4, ' ');
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    const auto u32 = [](std::vector<uint8_t>& out, uint32_t v) {
+        for (int i = 0; i < 4; ++i) // little endian, as the specification wants
+            out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+    };
+    const size_t total = 12 + 8 + text.size() + 8 + bin.size();
+    if (total > std::numeric_limits<uint32_t>::max())
+        return Error{"", "", "the export is over 4 GiB, the GLB limit: record fewer seconds or frames"};
+    std::vector<uint8_t> out;
+    out.reserve(total);
+    u32(out, 0x46546C67); // "glTF"
+    u32(out, 2);
+    u32(out, static_cast<uint32_t>(total));
+    u32(out, static_cast<uint32_t>(text.size()));
+    u32(out, 0x4E4F534A); // "JSON"
+    out.insert(out.end(), text.begin(), text.end());
+    u32(out, static_cast<uint32_t>(bin.size()));
+    u32(out, 0x004E4942); // "BIN\0"
+    out.insert(out.end(), bin.begin(), bin.end());
+    return out;
+}
+
 } // namespace
 
 Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& rec)
@@ -151,58 +241,13 @@ Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& rec)
     if (Status s = check(rec); !s)
         return s.error();
     GlbBuilder g;
-    json nodes = json::array(), meshes = json::array(), samplers = json::array(), channels = json::array();
+    json nodes = json::array(), meshes = json::array();
+    Animation anim;
     std::vector<float> times(rec.times.begin(), rec.times.end());
-    const int time_acc = g.add_floats(times, 1, "SCALAR", 0);
+    anim.time_acc = g.add_floats(times, 1, "SCALAR", 0);
     for (size_t bi = 0; bi < rec.bodies.size(); ++bi) {
-        const ExportBody& b = rec.bodies[bi];
-        const size_t r = b.mode_displacements.size();
-        json prim = {{"attributes",
-                      {{"POSITION", g.add_floats(flatten(b.mesh.positions), 3, "VEC3", k_array_buffer)},
-                       {"NORMAL", g.add_floats(flatten(b.mesh.normals), 3, "VEC3", k_array_buffer)}}},
-                     {"indices", g.add_indices(b.mesh.indices)},
-                     {"mode", k_triangles}};
-        json mesh = {{"name", b.name}};
-        if (r > 0) {
-            json targets = json::array(), names = json::array();
-            for (size_t k = 0; k < r; ++k) {
-                targets.push_back({{"POSITION", g.add_floats(flatten(b.mode_displacements[k]), 3, "VEC3",
-                                                             k_array_buffer)}});
-                char name[64];
-                std::snprintf(name, sizeof name, "mode_%zu_%.4gHz", k,
-                              k < b.frequencies_hz.size() ? b.frequencies_hz[k] : 0.0);
-                names.push_back(name);
-            }
-            prim["targets"] = std::move(targets);
-            mesh["weights"] = std::vector<double>(r, 0.0);
-            mesh["extras"] = {{"targetNames", std::move(names)}}; // the de-facto convention for names
-        }
-        mesh["primitives"] = json::array({std::move(prim)});
-        meshes.push_back(std::move(mesh));
-
-        std::vector<float> translation = flatten(b.positions), rotation;
-        rotation.reserve(b.orientations.size() * 4);
-        for (const Quat& q : b.orientations) // glTF order: x, y, z, w
-            for (double c : {q.x, q.y, q.z, q.w})
-                rotation.push_back(static_cast<float>(c));
-        json node = {{"name", b.name},
-                     {"mesh", bi},
-                     {"translation", {translation[0], translation[1], translation[2]}},
-                     {"rotation", {rotation[0], rotation[1], rotation[2], rotation[3]}}};
-        const auto channel = [&](int output, const char* path) {
-            samplers.push_back({{"input", time_acc}, {"output", output}, {"interpolation", "LINEAR"}});
-            channels.push_back(
-                {{"sampler", samplers.size() - 1}, {"target", {{"node", bi}, {"path", path}}}});
-        };
-        channel(g.add_floats(translation, 3, "VEC3", 0), "translation");
-        channel(g.add_floats(rotation, 4, "VEC4", 0), "rotation");
-        if (r > 0) {
-            // Weights output: frames × r scalars, frame-major, as the specification lays them out.
-            std::vector<float> weights(b.amplitudes.begin(), b.amplitudes.end());
-            channel(g.add_floats(weights, 1, "SCALAR", 0), "weights");
-            node["weights"] = std::vector<float>(weights.begin(), weights.begin() + static_cast<long>(r));
-        }
-        nodes.push_back(std::move(node));
+        meshes.push_back(body_mesh(g, rec.bodies[bi]));
+        nodes.push_back(body_node(g, rec.bodies[bi], bi, anim));
     }
     json root_nodes = json::array();
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -214,34 +259,13 @@ Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& rec)
         {"nodes", nodes},
         {"meshes", meshes},
         {"animations",
-         json::array({{{"name", "simulation"}, {"samplers", samplers}, {"channels", channels}}})},
+         json::array({{{"name", "simulation"}, {"samplers", anim.samplers}, {"channels", anim.channels}}})},
         {"buffers", json::array({{{"byteLength", g.bin.size()}}})},
         {"bufferViews", g.views},
         {"accessors", g.accessors},
     };
     // Body names come from the user: replace invalid UTF-8 rather than throw.
-    std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
-    text.resize((text.size() + 3) / 4 * 4, ' ');
-    g.bin.resize((g.bin.size() + 3) / 4 * 4, 0);
-    const auto u32 = [](std::vector<uint8_t>& out, uint32_t v) {
-        for (int i = 0; i < 4; ++i) // little endian, as the specification wants
-            out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-    };
-    const size_t total = 12 + 8 + text.size() + 8 + g.bin.size();
-    if (total > std::numeric_limits<uint32_t>::max())
-        return Error{"", "", "the export is over 4 GiB, the GLB limit: record fewer seconds or frames"};
-    std::vector<uint8_t> out;
-    out.reserve(total);
-    u32(out, 0x46546C67); // "glTF"
-    u32(out, 2);
-    u32(out, static_cast<uint32_t>(total));
-    u32(out, static_cast<uint32_t>(text.size()));
-    u32(out, 0x4E4F534A); // "JSON"
-    out.insert(out.end(), text.begin(), text.end());
-    u32(out, static_cast<uint32_t>(g.bin.size()));
-    u32(out, 0x004E4942); // "BIN\0"
-    out.insert(out.end(), g.bin.begin(), g.bin.end());
-    return out;
+    return glb_container(doc.dump(-1, ' ', false, json::error_handler_t::replace), std::move(g.bin));
 }
 
 Status write_glb(const ExportRecording& rec, const std::string& path)

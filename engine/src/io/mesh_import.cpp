@@ -215,9 +215,9 @@ bool recompute_primitive_types(aiScene& scene)
     }
     return true;
 }
-} // namespace
-
-Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
+// The checks assimp does not make, or makes with a vaguer message: the scale, the file itself and a
+// PLY header.
+Status check_mesh_file(const std::string& path, const ImportDef& def)
 {
     if (!std::isfinite(def.scale) || def.scale < 0.0)
         return fail(path, "import scale must be finite and >= 0 (0: from the file), found " +
@@ -238,20 +238,18 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
         if (const std::optional<std::string> problem = ply_header_problem(in))
             return fail(path, *problem);
     }
+    return {};
+}
 
-    std::string ext = fs::path(path).extension().string();
-    if (!ext.empty())
-        ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-
-    Assimp::Importer importer;
-    // The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
-    // assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
-    // Validation rejects out-of-range indices and similar corruption before anything reads them.
-    // Read and validate first, then post-process: Debian's assimp 5.2 has its asserts on, and its
-    // triangulation aborts the process when a reader's primitive-type flags disagree with the faces
-    // (a malformed PLY did, found by tests/fuzz/mesh_fuzz.cpp); the flags are recomputed in between.
+// The sort step leaves each mesh one primitive type; gather() takes the triangle meshes only. (Asking
+// assimp to drop points and lines instead fails a lines-only file with a vaguer message.)
+// Validation rejects out-of-range indices and similar corruption before anything reads them.
+// Read and validate first, then post-process: Debian's assimp 5.2 has its asserts on, and its
+// triangulation aborts the process when a reader's primitive-type flags disagree with the faces
+// (a malformed PLY did, found by tests/fuzz/mesh_fuzz.cpp); the flags are recomputed in between.
+Result<const aiScene*> read_scene(Assimp::Importer& importer, const std::string& path, const std::string& ext,
+                                  const ImportDef& def)
+{
     const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
     const std::string cannot =
         std::string("cannot read mesh (") + (ext.empty() ? "no extension" : ext) + "): ";
@@ -266,15 +264,13 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
         return fail(path, cannot + importer.GetErrorString());
     if (scene->mRootNode == nullptr)
         return fail(path, "the file has no node tree");
+    return scene;
+}
 
-    Gather g;
-    gather(*scene, *scene->mRootNode, aiMatrix4x4(), g);
-    if (!g.finite)
-        return fail(path, "a vertex coordinate is not finite (NaN or Inf)");
-    if (g.mesh.indices.empty())
-        return fail(path, "no triangles (the file holds " + std::to_string(scene->mNumMeshes) +
-                              " meshes, none with triangle faces)");
-
+// The gathered triangles in metres, Y up, welded when asked for.
+Result<ImportedMesh> to_metres_y_up(const std::string& path, const ImportDef& def, const aiScene& scene,
+                                    const std::string& ext, Gather& g)
+{
     ImportedMesh out;
     out.format = ext;
     out.source_meshes = g.instances;
@@ -282,10 +278,10 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
     if (def.scale > 0.0)
         out.scale = def.scale;
     else if (fbx) // FBX units are centimetres per file unit
-        out.scale = 0.01 * metadata_number(scene->mMetaData, "UnitScaleFactor").value_or(1.0);
+        out.scale = 0.01 * metadata_number(scene.mMetaData, "UnitScaleFactor").value_or(1.0);
     if (!(std::isfinite(out.scale) && out.scale > 0.0))
         return fail(path, "the file's unit scale is not a positive number");
-    out.up_axis = def.up_axis != UpAxis::FromFile ? def.up_axis : (fbx ? fbx_up_axis(*scene) : UpAxis::PosY);
+    out.up_axis = def.up_axis != UpAxis::FromFile ? def.up_axis : (fbx ? fbx_up_axis(scene) : UpAxis::PosY);
 
     const Mat3 r = up_rotation(out.up_axis);
     for (Vec3& p : g.mesh.positions)
@@ -296,6 +292,32 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
     if (out.mesh.indices.empty())
         return fail(path, "no triangles with three distinct vertices");
     return out;
+}
+
+} // namespace
+
+Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
+{
+    if (Status status = check_mesh_file(path, def); !status)
+        return status.error();
+    std::string ext = std::filesystem::path(path).extension().string();
+    if (!ext.empty())
+        ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+
+    Assimp::Importer importer;
+    const Result<const aiScene*> scene = read_scene(importer, path, ext, def);
+    if (!scene)
+        return scene.error();
+    Gather g;
+    gather(**scene, *(*scene)->mRootNode, aiMatrix4x4(), g);
+    if (!g.finite)
+        return fail(path, "a vertex coordinate is not finite (NaN or Inf)");
+    if (g.mesh.indices.empty())
+        return fail(path, "no triangles (the file holds " + std::to_string((*scene)->mNumMeshes) +
+                              " meshes, none with triangle faces)");
+    return to_metres_y_up(path, def, **scene, ext, g);
 }
 
 } // namespace supermodal

@@ -52,6 +52,44 @@ void store_modes(const modal::LatticeModel& model, const modal::ModeSolution& so
     b.mass = Eigen::VectorXd(model.mass * Eigen::VectorXd::Ones(model.dof_count())).sum() / 3.0;
 }
 
+/// The eigen solve's scale E/(ρ·L²) [1/s²], L the lattice's largest extent: keeps its numbers near 1.
+double eigen_scale(const ModalBasisDef& def, const modal::Lattice& lat)
+{
+    double extent = 0.0;
+    for (int d = 0; d < 3; ++d)
+        extent = std::max(extent, lat.cells[d] * lat.cell_size[d]);
+    return def.young / (def.density * extent * extent);
+}
+
+/// The solve's checks and the lattice's counts (not the timings).
+void fill_diagnostics(const modal::LatticeModel& model, const modal::ModeSolution& sol, int mode_count,
+                      ModalDiagnostics& d)
+{
+    d.rigid_eigenvalues = sol.rigid_eigenvalues;
+    d.first_elastic_eigenvalue = sol.eigenvalues[0];
+    for (const double l : sol.rigid_eigenvalues)
+        d.rigid_ratio = std::max(d.rigid_ratio, std::abs(l) / d.first_elastic_eigenvalue);
+    const double last = sol.eigenvalues[mode_count - 1];
+    d.splits_degenerate_cluster =
+        sol.next_eigenvalue > 0.0 && sol.next_eigenvalue - last <= 1e-6 * std::abs(last);
+    d.sparse_solver = sol.sparse;
+    d.solver_rounds = sol.rounds;
+    d.inertia_checked = sol.inertia_checked;
+    d.dof_count = model.dof_count();
+    d.kept_cell_count = model.kept_cell_count;
+    d.cut_cell_count = model.cut_cell_count;
+    d.aggregated_cell_count = model.aggregated_cell_count;
+    d.dropped_sliver_count = model.dropped_sliver_count;
+    // Per-mode residual of the eigenproblem on the full lattice: how well each kept pair solves it.
+    d.mode_residuals.resize(static_cast<size_t>(mode_count));
+    for (int k = 0; k < mode_count; ++k) {
+        const Eigen::VectorXd k_phi = model.stiffness * sol.vectors.col(k);
+        const Eigen::VectorXd m_phi = model.mass * sol.vectors.col(k);
+        const double scale = k_phi.norm();
+        d.mode_residuals[k] = scale > 0.0 ? (k_phi - sol.eigenvalues[k] * m_phi).norm() / scale : 0.0;
+    }
+}
+
 } // namespace
 
 ModalBasisDef default_modal_basis_def()
@@ -118,10 +156,6 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
 
     const Clock::time_point solve_start = Clock::now();
     const modal::Lattice& lat = model->lattice;
-    double extent = 0.0;
-    for (int d = 0; d < 3; ++d)
-        extent = std::max(extent, lat.cells[d] * lat.cell_size[d]);
-    const double scale = def.young / (def.density * extent * extent);
     // Every mode: the whole lattice, which only the dense solver delivers.
     const bool all = def.mode_count == k_all_modes;
     const int dofs = model->dof_count();
@@ -131,7 +165,7 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
                          std::to_string(k_max_full_dofs) + " (dense solve): coarsen the lattice"};
     const int mode_count = all ? dofs - 6 : def.mode_count;
     Result<modal::ModeSolution> sol =
-        modal::solve_modes(*model, mode_count, all ? ModalSolver::Dense : def.solver, scale);
+        modal::solve_modes(*model, mode_count, all ? ModalSolver::Dense : def.solver, eigen_scale(def, lat));
     if (!sol)
         return sol.error();
 
@@ -149,33 +183,9 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     b.mode_count = mode_count;
     store_modes(*model, *sol, b);
     b.kinds = modal::classify_modes(*model, sol->vectors);
-
-    ModalDiagnostics& d = b.diagnostics;
-    d.rigid_eigenvalues = sol->rigid_eigenvalues;
-    d.first_elastic_eigenvalue = sol->eigenvalues[0];
-    for (const double l : sol->rigid_eigenvalues)
-        d.rigid_ratio = std::max(d.rigid_ratio, std::abs(l) / d.first_elastic_eigenvalue);
-    const double last = sol->eigenvalues[mode_count - 1];
-    d.splits_degenerate_cluster =
-        sol->next_eigenvalue > 0.0 && sol->next_eigenvalue - last <= 1e-6 * std::abs(last);
-    d.sparse_solver = sol->sparse;
-    d.solver_rounds = sol->rounds;
-    d.inertia_checked = sol->inertia_checked;
-    d.dof_count = model->dof_count();
-    d.kept_cell_count = model->kept_cell_count;
-    d.cut_cell_count = model->cut_cell_count;
-    d.aggregated_cell_count = model->aggregated_cell_count;
-    d.dropped_sliver_count = model->dropped_sliver_count;
-    // Per-mode residual of the eigenproblem on the full lattice: how well each kept pair solves it.
-    d.mode_residuals.resize(static_cast<size_t>(mode_count));
-    for (int k = 0; k < mode_count; ++k) {
-        const Eigen::VectorXd k_phi = model->stiffness * sol->vectors.col(k);
-        const Eigen::VectorXd m_phi = model->mass * sol->vectors.col(k);
-        const double scale = k_phi.norm();
-        d.mode_residuals[k] = scale > 0.0 ? (k_phi - sol->eigenvalues[k] * m_phi).norm() / scale : 0.0;
-    }
-    d.assembly_seconds = assembly_seconds;
-    d.eigen_seconds = seconds_since(solve_start);
+    fill_diagnostics(*model, *sol, mode_count, b.diagnostics);
+    b.diagnostics.assembly_seconds = assembly_seconds;
+    b.diagnostics.eigen_seconds = seconds_since(solve_start);
     return b;
 }
 

@@ -183,6 +183,8 @@ struct Renderer::Impl {
                    PoseSource poses);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
+    render::View begin_frame(const World& world, const CameraDef& camera_in);
+    void draw_bodies(const World& world, PoseSource poses, std::vector<std::pair<Vec3, double>>& out_planes);
     Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
                   const std::function<void()>& overlay);
 };
@@ -283,15 +285,9 @@ void Renderer::Impl::draw_shadows(const World& world, const render::View& view, 
     glDepthMask(GL_TRUE);
 }
 
-Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
-                              const std::function<void()>& overlay)
+// Frames the camera, clears the framebuffer and sets up the body program: the view of this frame.
+render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& camera_in)
 {
-    if (Status s = context.make_current(); !s)
-        return s;
-    if (last_world != &world) { // another world: its handles mean other bodies
-        bodies.clear();
-        last_world = &world;
-    }
     const double aspect = static_cast<double>(def.width) / def.height;
     CameraDef camera = frame_bodies(world, camera_in, aspect);
     if (def.fault == RenderFault::FlippedYaw)
@@ -318,13 +314,18 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     set_vec3(programs.key_dir, normalized(-0.55 * right + Vec3{0, 1.1, 0} - 0.6 * fwd));
     set_vec3(programs.fill_dir, normalized(0.8 * right + Vec3{0, 0.2, 0} - 0.5 * fwd));
     glUniform1i(programs.flat, def.fault == RenderFault::FlatShading ? 1 : 0);
-    const double alpha = poses == PoseSource::Interpolated ? world.interpolation_alpha() : 1.0;
+    return view;
+}
 
-    std::vector<std::pair<Vec3, double>> planes;
+// Every body but the planes, deformed by its modes; the planes go to out_planes (normal, offset).
+void Renderer::Impl::draw_bodies(const World& world, PoseSource poses,
+                                 std::vector<std::pair<Vec3, double>>& out_planes)
+{
+    const double alpha = poses == PoseSource::Interpolated ? world.interpolation_alpha() : 1.0;
     for (Entity b : world_bodies(world)) {
         const ShapeDef& shape = body_shape(world, b);
         if (shape.type == ShapeType::Plane) {
-            planes.emplace_back(shape.plane_normal, shape.plane_offset);
+            out_planes.emplace_back(shape.plane_normal, shape.plane_offset);
             continue;
         }
         BodyEntry& e = entry(world, b, shape);
@@ -346,6 +347,20 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
             glDrawElements(GL_TRIANGLES, e.mesh->index_count, GL_UNSIGNED_INT, nullptr);
         }
     }
+}
+
+Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
+                              const std::function<void()>& overlay)
+{
+    if (Status s = context.make_current(); !s)
+        return s;
+    if (last_world != &world) { // another world: its handles mean other bodies
+        bodies.clear();
+        last_world = &world;
+    }
+    const render::View view = begin_frame(world, camera_in);
+    std::vector<std::pair<Vec3, double>> planes;
+    draw_bodies(world, poses, planes);
     glDisable(GL_CULL_FACE);
     if (def.grid) {
         if (planes.empty())

@@ -410,11 +410,9 @@ void place_in_parent(const World& world, Entity parent, BodyDef& def)
     def.angular_velocity = w + rotate(q, def.angular_velocity);
 }
 
-} // namespace
-
-Result<World> build_world(const Scene& scene)
+// A Scene may be built or edited in code, so its Defs are checked again before create_body asserts.
+Status validate_scene(const Scene& scene)
 {
-    // A Scene may be built or edited in code, so its Defs are checked again before create_body asserts.
     if (Status status = validate(scene.world); !status)
         return Error{scene.source, "/settings", "invalid settings: " + status.error().message()};
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -431,51 +429,73 @@ Result<World> build_world(const Scene& scene)
         if (Status status = validate(body.def); !status)
             return Error{scene.source, where, "invalid body: " + status.error().message()};
     }
-    World world(scene.world);
-    for (size_t i = 0; i < scene.bodies.size(); ++i) {
-        BodyDef def = scene.bodies[i].def;
-        Entity parent{};
-        if (!scene.bodies[i].parent.empty()) {
-            parent = find_body(world, scene.bodies[i].parent);
-            if (parent.is_null())
-                return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/parent",
-                             "no earlier body named " + scene_io::quote_text(scene.bodies[i].parent)};
-            place_in_parent(world, parent, def);
+    return {};
+}
+
+// Creates scene body i, placed in its parent's frame when it has one.
+Status add_scene_body(const Scene& scene, size_t i, World& world)
+{
+    BodyDef def = scene.bodies[i].def;
+    Entity parent{};
+    if (!scene.bodies[i].parent.empty()) {
+        parent = find_body(world, scene.bodies[i].parent);
+        if (parent.is_null())
+            return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/parent",
+                         "no earlier body named " + scene_io::quote_text(scene.bodies[i].parent)};
+        place_in_parent(world, parent, def);
+    }
+    // Contact properties come from the body's material (density was resolved while reading).
+    for (const MaterialDef& m : scene.materials)
+        if (m.name == scene.bodies[i].material) {
+            def.friction = m.friction;
+            def.restitution = m.restitution;
+            def.rolling_resistance = m.rolling_resistance;
+            def.young = m.young;
+            def.poisson = m.poisson;
         }
-        // Contact properties come from the body's material (density was resolved while reading).
-        for (const MaterialDef& m : scene.materials)
-            if (m.name == scene.bodies[i].material) {
-                def.friction = m.friction;
-                def.restitution = m.restitution;
-                def.rolling_resistance = m.rolling_resistance;
-                def.young = m.young;
-                def.poisson = m.poisson;
-            }
-        // A modal basis can fail to build (too many modes for the lattice, a lattice too coarse to hold
-        // the body together): say why before create_body would only refuse.
-        if (def.modal.enabled)
-            if (auto basis = modal_basis_for(world, def); !basis)
-                return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/dynamics",
-                             "cannot build the modal basis: " + basis.error().message()};
-        const Entity body = create_body(world, def);
-        if (body.is_null())
-            return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};
-        if (!parent.is_null())
-            (void)set_body_parent(world, body, parent); // parent is earlier, so no cycle
-    }
-    for (size_t i = 0; i < scene.constraints.size(); ++i) {
-        const SceneConstraint& sc = scene.constraints[i];
-        const std::string where = scene_io::pointer_join("/constraints", i);
-        ConstraintDef def = sc.def;
-        def.a = find_body(world, sc.body_a);
-        def.b = sc.body_b.empty() ? Entity{} : find_body(world, sc.body_b);
-        if (def.a.is_null() || (!sc.body_b.empty() && def.b.is_null()))
-            return Error{scene.source, where, "names a body that is not in the scene"};
-        if (Status status = validate(def); !status)
-            return Error{scene.source, where, "invalid constraint: " + status.error().message()};
-        if (create_constraint(world, def).is_null())
-            return Error{scene.source, where, "the world refused this constraint"};
-    }
+    // A modal basis can fail to build (too many modes for the lattice, a lattice too coarse to hold
+    // the body together): say why before create_body would only refuse.
+    if (def.modal.enabled)
+        if (auto basis = modal_basis_for(world, def); !basis)
+            return Error{scene.source, scene_io::pointer_join("/bodies", i) + "/dynamics",
+                         "cannot build the modal basis: " + basis.error().message()};
+    const Entity body = create_body(world, def);
+    if (body.is_null())
+        return Error{scene.source, scene_io::pointer_join("/bodies", i), "the world refused this body"};
+    if (!parent.is_null())
+        (void)set_body_parent(world, body, parent); // parent is earlier, so no cycle
+    return {};
+}
+
+Status add_scene_constraint(const Scene& scene, size_t i, World& world)
+{
+    const SceneConstraint& sc = scene.constraints[i];
+    const std::string where = scene_io::pointer_join("/constraints", i);
+    ConstraintDef def = sc.def;
+    def.a = find_body(world, sc.body_a);
+    def.b = sc.body_b.empty() ? Entity{} : find_body(world, sc.body_b);
+    if (def.a.is_null() || (!sc.body_b.empty() && def.b.is_null()))
+        return Error{scene.source, where, "names a body that is not in the scene"};
+    if (Status status = validate(def); !status)
+        return Error{scene.source, where, "invalid constraint: " + status.error().message()};
+    if (create_constraint(world, def).is_null())
+        return Error{scene.source, where, "the world refused this constraint"};
+    return {};
+}
+
+} // namespace
+
+Result<World> build_world(const Scene& scene)
+{
+    if (Status status = validate_scene(scene); !status)
+        return status.error();
+    World world(scene.world);
+    for (size_t i = 0; i < scene.bodies.size(); ++i)
+        if (Status status = add_scene_body(scene, i, world); !status)
+            return status.error();
+    for (size_t i = 0; i < scene.constraints.size(); ++i)
+        if (Status status = add_scene_constraint(scene, i, world); !status)
+            return status.error();
     return world;
 }
 

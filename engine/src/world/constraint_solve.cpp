@@ -220,19 +220,11 @@ void solve_friction(Row& r)
     push_rigid_spin(r.b, dl);
 }
 
-bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
+// The linear row: the anchors' gap and its effective mass (along the axis for a distance constraint).
+void prepare_linear(Row& r, const ConstraintModel& c, ConstraintState& st)
 {
-    const ConstraintDef& d = c.def;
-    // A weld holds the material's orientation at the anchors, so it needs the modes' rotation there.
-    const bool weld = d.type == ConstraintType::Weld;
-    r.a = make_side(bodies, d.a, c.local_a, h, weld);
-    r.b = make_side(bodies, d.b, c.local_b, h, weld);
-    if (r.a.m == nullptr)
-        return false;
-    r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
-    r.h = h;
     const Vec3 gap = r.a.point - r.b.point;
-    if (d.type == ConstraintType::Distance) {
+    if (c.def.type == ConstraintType::Distance) {
         const double len = length(gap);
         st.error.linear = std::abs(len - c.rest_length);
         if (len > 1e-12) {
@@ -247,7 +239,62 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
         r.gap = gap;
         r.has_mass = invert(point_mass_inverse(r.a, r.b), r.mass);
     }
+}
+
+// A one-sided limit row in `slot` about unit world axis_w, active from k_limit_margin before the limit
+// (excess [rad], > 0 past it).
+void add_limit(Row& r, ConstraintState& st, int slot, const Vec3& axis_w, double excess)
+{
+    if (excess <= -k_limit_margin)
+        return;
+    st.error.angular = std::max(st.error.angular, excess);
+    const double k_inv = dot(axis_w, r.a.inv_inertia * axis_w) + dot(axis_w, r.b.inv_inertia * axis_w);
+    if (!(k_inv > 0.0))
+        return;
+    r.limit_active[slot] = true;
+    r.limit_axis[slot] = axis_w;
+    r.limit_excess[slot] = excess;
+    r.limit_mass[slot] = 1.0 / k_inv;
+}
+
+// A ball joint's swing and twist limits, from the relative rotation in a's frame.
+void prepare_limits(Row& r, const ConstraintModel& c, ConstraintState& st)
+{
+    const ConstraintDef& d = c.def;
     const Quat qa = orientation_of(r.a), qb = orientation_of(r.b);
+    const Quat rel = conjugate(qa) * qb * conjugate(c.rest_relative); // a's frame
+    Vec3 swing{};
+    double twist = 0.0;
+    swing_twist(rel, c.axis_a, swing, twist);
+    const double swing_angle = length(swing);
+    if (d.swing_limit >= 0.0 && swing_angle > 1e-12)
+        add_limit(r, st, 0, rotate(qa, swing / swing_angle), swing_angle - d.swing_limit);
+    if (d.twist_limit >= 0.0) {
+        // The twist turns about the axis as each body carries it (a's axis, and the same axis swung
+        // onto b): their bisector is the direction whose relative spin changes the twist; a's axis
+        // alone is wrong once the joint swings and pumped energy into a twist-limited joint.
+        const Vec3 axis_on_a = rotate(qa, c.axis_a);
+        const Vec3 axis_on_b = rotate(qa, rotate(quat_from_rotation_vector(swing), c.axis_a));
+        const Vec3 bisector = axis_on_a + axis_on_b;
+        if (length(bisector) > 1e-6) {
+            const Vec3 axis_w = normalized(bisector);
+            add_limit(r, st, 1, twist >= 0.0 ? axis_w : -1.0 * axis_w, std::abs(twist) - d.twist_limit);
+        }
+    }
+}
+
+bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
+{
+    const ConstraintDef& d = c.def;
+    // A weld holds the material's orientation at the anchors, so it needs the modes' rotation there.
+    const bool weld = d.type == ConstraintType::Weld;
+    r.a = make_side(bodies, d.a, c.local_a, h, weld);
+    r.b = make_side(bodies, d.b, c.local_b, h, weld);
+    if (r.a.m == nullptr)
+        return false;
+    r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
+    r.h = h;
+    prepare_linear(r, c, st);
     if (weld) {
         // Orientation error of b's material against where the weld holds it, as a world rotation vector.
         r.theta =
@@ -255,38 +302,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
         st.error.angular = length(r.theta);
         r.has_ang_mass = invert(anchor_inertia_inverse(r.a, r.b), r.ang_mass);
     } else if (d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0)) {
-        const Quat rel = conjugate(qa) * qb * conjugate(c.rest_relative); // a's frame
-        Vec3 swing{};
-        double twist = 0.0;
-        swing_twist(rel, c.axis_a, swing, twist);
-        auto add_limit = [&](int slot, const Vec3& axis_w, double excess) {
-            if (excess <= -k_limit_margin)
-                return;
-            st.error.angular = std::max(st.error.angular, excess);
-            const double k_inv =
-                dot(axis_w, r.a.inv_inertia * axis_w) + dot(axis_w, r.b.inv_inertia * axis_w);
-            if (!(k_inv > 0.0))
-                return;
-            r.limit_active[slot] = true;
-            r.limit_axis[slot] = axis_w;
-            r.limit_excess[slot] = excess;
-            r.limit_mass[slot] = 1.0 / k_inv;
-        };
-        const double swing_angle = length(swing);
-        if (d.swing_limit >= 0.0 && swing_angle > 1e-12)
-            add_limit(0, rotate(qa, swing / swing_angle), swing_angle - d.swing_limit);
-        if (d.twist_limit >= 0.0) {
-            // The twist turns about the axis as each body carries it (a's axis, and the same axis swung
-            // onto b): their bisector is the direction whose relative spin changes the twist; a's axis
-            // alone is wrong once the joint swings and pumped energy into a twist-limited joint.
-            const Vec3 axis_on_a = rotate(qa, c.axis_a);
-            const Vec3 axis_on_b = rotate(qa, rotate(quat_from_rotation_vector(swing), c.axis_a));
-            const Vec3 bisector = axis_on_a + axis_on_b;
-            if (length(bisector) > 1e-6) {
-                const Vec3 axis_w = normalized(bisector);
-                add_limit(1, twist >= 0.0 ? axis_w : -1.0 * axis_w, std::abs(twist) - d.twist_limit);
-            }
-        }
+        prepare_limits(r, c, st);
     }
     warm_start(r, st, d);
     if (d.angular_damping > 0.0)

@@ -93,24 +93,17 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
         collide_sampled(a, b, out_points);
 }
 
-} // namespace
-
-int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
+bool any_dynamic_collider(Registry& reg)
 {
-    io.proxies.clear();
-    io.pairs.clear();
-    // No contact at all, or no pair with a dynamic body (only those collide): a scene of static and
-    // kinematic bodies (a gallery, a paused editor scene) skips the boxes, the grid and, per substep, the
-    // narrowphase's boxes.
-    bool any_dynamic = false;
-    if (def.contact.enabled)
-        reg.each<BodyModel>([&](Entity, const BodyModel& m) {
-            any_dynamic |= m.collider && m.motion == MotionType::Dynamic;
-        });
-    if (!any_dynamic) {
-        begin_step_events(io.events, 0);
-        return def.substep_count;
-    }
+    bool any = false;
+    reg.each<BodyModel>(
+        [&](Entity, const BodyModel& m) { any |= m.collider && m.motion == MotionType::Dynamic; });
+    return any;
+}
+
+// One broadphase proxy per body with a collider: its world box swept over the step.
+void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
+{
     const double dt = def.dt;
     reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, const Velocity& v) {
         if (!m.collider)
@@ -128,7 +121,12 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         }
         io.proxies.push_back({.entity = e, .box = box, .is_static = m.motion != MotionType::Dynamic});
     });
-    find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+}
+
+// Drops the broadphase's pairs that cannot touch: excluded ones, and bodies whose swept box stays
+// above a plane they were paired with.
+void drop_pairs_apart(const Registry& reg, ContactWorld& io)
+{
     if (!io.excluded_pairs.empty()) // jointed parts and parent–child pairs
         std::erase_if(io.pairs, [&](const BodyPair& pair) {
             return std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), pair.key());
@@ -151,14 +149,17 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
             return box_above_plane(io.swept[pair.a.index], sb);
         return false;
     });
-    begin_step_events(io.events, io.pairs.size());
+}
 
-    // Tunnelling rule: substep so that no pair closes by more than a fraction of the thinner body per
-    // substep (measured in tests/contact/contact_system_test.cpp: a 50 m/s ball and a 2 cm board).
-    // Stopping rule, with the automatic contact frequency ω = 2π·0.1·s/dt: the spring stops an approach
-    // at speed v within v/ω, which must stay under half the thinner body, or bodies sink past each
-    // other's centres, where the normals cancel and they stay merged (measured: ellipsoids falling
-    // 1.8 m in the pile benchmark merged, 40 mm overlaps, at one substep).
+// Tunnelling rule: substep so that no pair closes by more than a fraction of the thinner body per
+// substep (measured in tests/contact/contact_system_test.cpp: a 50 m/s ball and a 2 cm board).
+// Stopping rule, with the automatic contact frequency ω = 2π·0.1·s/dt: the spring stops an approach
+// at speed v within v/ω, which must stay under half the thinner body, or bodies sink past each
+// other's centres, where the normals cancel and they stay merged (measured: ellipsoids falling
+// 1.8 m in the pile benchmark merged, 40 mm overlaps, at one substep).
+int substeps_needed(const WorldDef& def, const Registry& reg, const ContactWorld& io)
+{
+    const double dt = def.dt;
     const double stop_factor = 2.0 * std::numbers::pi * k_frequency_cap_per_rate * k_stop_fraction;
     const double factor = def.contact.frequency_hz > 0.0
                               ? def.contact.speculative_speed_factor
@@ -180,6 +181,26 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     if (!(needed < static_cast<double>(cap)))
         return cap;
     return static_cast<int>(std::ceil(needed));
+}
+
+} // namespace
+
+int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
+{
+    io.proxies.clear();
+    io.pairs.clear();
+    // No contact at all, or no pair with a dynamic body (only those collide): a scene of static and
+    // kinematic bodies (a gallery, a paused editor scene) skips the boxes, the grid and, per substep, the
+    // narrowphase's boxes.
+    if (!def.contact.enabled || !any_dynamic_collider(reg)) {
+        begin_step_events(io.events, 0);
+        return def.substep_count;
+    }
+    add_swept_proxies(def, reg, io);
+    find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+    drop_pairs_apart(reg, io);
+    begin_step_events(io.events, io.pairs.size());
+    return substeps_needed(def, reg, io);
 }
 
 void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io)
@@ -276,18 +297,10 @@ void load_modes(Registry& reg, const ContactWorld& io, size_t pi)
     modal_add_point_load(reg, pair.b, pf.info.point, -1.0 * pf.friction_force);
 }
 
-} // namespace
-
-void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, const Parallel& par,
-                          ContactWorld& io, StepWarnings& io_warnings)
+// The substep's spring rate: the world's frequency, or the stability cap 1/(10 h) (always in material
+// mode, where it caps the Hertz stiffness); a frequency over the cap is clamped and counted.
+PenaltyParams penalty_params(const WorldDef& def, const StepContext& ctx, StepWarnings& io_warnings)
 {
-    const size_t slots = reg.pool().slot_count();
-    io.force.assign(slots, Vec3{});
-    io.torque.assign(slots, Vec3{});
-    io.contacts.clear();
-    io.has_twist.clear();
-    io.has_roll.clear();
-    io.max_penetration = 0.0;
     const double cap_hz = k_frequency_cap_per_rate / ctx.h;
     const bool material = def.contact.stiffness == ContactStiffness::Material;
     double f_hz = def.contact.frequency_hz > 0.0 && !material ? def.contact.frequency_hz : cap_hz;
@@ -295,13 +308,17 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         f_hz = cap_hz;
         ++io_warnings.contact_frequency_clamps;
     }
-    const PenaltyParams params{.omega = 2.0 * std::numbers::pi * f_hz,
-                               .material = material,
-                               .damping_ratio = def.contact.damping_ratio,
-                               .h = ctx.h};
+    return {.omega = 2.0 * std::numbers::pi * f_hz,
+            .material = material,
+            .damping_ratio = def.contact.damping_ratio,
+            .h = ctx.h};
+}
 
-    // Per pair, on any thread: reads bodies and old anchors, writes only the pair's slot (and, for a pair
-    // with a modal body, its points' normal forces, which load the modes below).
+// Per pair, on any thread: reads bodies and old anchors, writes only the pair's slot (and, for a pair
+// with a modal body, its points' normal forces, which load the modes afterwards).
+void compute_pair_forces(const PenaltyParams& params, const StepContext& ctx, Registry& reg,
+                         const Parallel& par, ContactWorld& io)
+{
     io.pair_force.resize(io.pairs.size());
     io.zeta_caches.resize(par.part_capacity());
     io.modal_phi.resize(par.part_capacity());
@@ -316,9 +333,12 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         for (size_t pi = begin; pi < end; ++pi)
             io.pair_force[pi] = pair_penalty(params, creg, io, pi, io.zeta_caches[part], modes);
     });
+}
 
-    // In pair order, on one thread: sums per body, modal loads, new anchors (sorted, as the pairs are),
-    // events.
+// In pair order, on one thread: sums per body, modal loads, new anchors (sorted, as the pairs are),
+// events.
+void sum_pair_forces(const StepContext& ctx, Registry& reg, ContactWorld& io, StepWarnings& io_warnings)
+{
     std::vector<PairAnchor> anchors;
     anchors.reserve(io.anchors.size());
     for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
@@ -341,7 +361,23 @@ void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry&
         accumulate_touch(io.events, pi, pf.info, pf.normal_force, ctx.h);
     }
     io.anchors.swap(anchors);
+}
 
+} // namespace
+
+void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, const Parallel& par,
+                          ContactWorld& io, StepWarnings& io_warnings)
+{
+    const size_t slots = reg.pool().slot_count();
+    io.force.assign(slots, Vec3{});
+    io.torque.assign(slots, Vec3{});
+    io.contacts.clear();
+    io.has_twist.clear();
+    io.has_roll.clear();
+    io.max_penetration = 0.0;
+    const PenaltyParams params = penalty_params(def, ctx, io_warnings);
+    compute_pair_forces(params, ctx, reg, par, io);
+    sum_pair_forces(ctx, reg, io, io_warnings);
     // Forces into velocities, one body at a time (order-independent).
     reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, Velocity& v) {
         if (m.motion != MotionType::Dynamic)
