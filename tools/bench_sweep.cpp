@@ -189,7 +189,7 @@ void sweep_frequency(const Scene& scene, const BenchBase&, std::vector<BenchConf
     }
 }
 
-/// A knob of the sweep: its configurations, in k_bench_knobs order; `modal` knobs need a modal body.
+/// A knob of the sweep: its configurations, in the order they run; `modal` knobs need a modal body.
 struct Knob {
     const char* name;
     bool modal;
@@ -207,6 +207,17 @@ constexpr Knob k_knobs[] = {
 };
 
 } // namespace
+
+const std::vector<std::string>& bench_knobs()
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const Knob& k : k_knobs)
+            out.emplace_back(k.name);
+        return out;
+    }();
+    return names;
+}
 
 std::string resolve_base(const Scene& scene, BenchBase& base)
 {

@@ -14,12 +14,11 @@ namespace supermodal::cli
 {
 
 /// Every knob the sweep knows, in the order it runs them.
-inline const std::vector<std::string> k_bench_knobs = {"dt",      "substeps", "modes",      "lattice",
-                                                       "spacing", "path",     "integrator", "frequency"};
+[[nodiscard]] const std::vector<std::string>& bench_knobs();
 
 /// One point of a sweep: the scene with one knob moved.
 struct BenchConfig {
-    std::string knob;  ///< Name from k_bench_knobs.
+    std::string knob;  ///< Name from bench_knobs().
     std::string value; ///< What the knob was set to, as a short label ("x0.5", "support_map", "8").
     Scene scene;
 };

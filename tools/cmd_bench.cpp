@@ -24,9 +24,9 @@ std::string parse_knobs(const std::string& text, std::vector<std::string>& knobs
     while (std::getline(in, k, ',')) {
         if (k.empty())
             continue;
-        if (std::find(k_bench_knobs.begin(), k_bench_knobs.end(), k) == k_bench_knobs.end()) {
+        if (std::find(bench_knobs().begin(), bench_knobs().end(), k) == bench_knobs().end()) {
             std::string known;
-            for (const std::string& n : k_bench_knobs)
+            for (const std::string& n : bench_knobs())
                 known += (known.empty() ? "" : ", ") + n;
             return "bench: unknown knob '" + k + "' (known: " + known + ")";
         }
