@@ -4,7 +4,7 @@
 // chunk padded with zeros, each to 4 bytes. One bufferView per accessor, 4-byte aligned, tightly
 // packed (so no byteStride); vertex data targets ARRAY_BUFFER, indices ELEMENT_ARRAY_BUFFER, animation
 // data no target (the specification forbids a target there).
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "supermodal/export.h"
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Export, part 3: a recording as one Wavefront OBJ per sample, every body deformed and posed (world).
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "supermodal/export.h"
 
 #include <cstdio>

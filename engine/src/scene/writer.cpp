@@ -4,7 +4,7 @@
 // whose value means "not set" (an unbounded yield stress, an automatic lattice, no joint limit) are
 // left out so that they read back as "not set"; every other field is written, so an editor can reach
 // it by its JSON pointer.
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "scene/json_text.h"
 #include "supermodal/body.h"
 #include "supermodal/scene.h"

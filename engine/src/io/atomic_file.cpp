@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 
 #include <cerrno>
 #include <cstdio>
