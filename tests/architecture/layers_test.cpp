@@ -52,6 +52,25 @@ TEST(Layers, UpwardIncludeIsReportedWithFileAndLine)
     std::filesystem::remove_all(root);
 }
 
+TEST(Layers, IncludeIntoASiblingLibraryIsReported)
+{
+    // capi and render share a level but not a library: neither links the other. scene and io share
+    // both, and both may use the engine below them.
+    const std::filesystem::path root = std::filesystem::temp_directory_path() / "supermodal_layers_sibling";
+    std::filesystem::remove_all(root);
+    write(root / "world/w.h", "#pragma once\n");
+    write(root / "io/f.h", "#pragma once\n#include \"world/w.h\"\n");
+    write(root / "scene/s.cpp", "#include \"io/f.h\"\n");
+    write(root / "capi/c.h", "#pragma once\n#include \"scene/s.h\"\n");
+    write(root / "render/r.cpp", "#include \"io/f.h\"\n#include \"capi/c.h\"\n");
+    const std::vector<LayerViolation> found = find_layer_violations(root);
+    ASSERT_EQ(found.size(), 1u) << describe(found);
+    EXPECT_EQ(found[0].file, "render/r.cpp");
+    EXPECT_EQ(found[0].line, 2);
+    EXPECT_NE(found[0].message.find("a library it does not link"), std::string::npos) << found[0].message;
+    std::filesystem::remove_all(root);
+}
+
 TEST(Layers, FolderWithoutLayerIsReported)
 {
     const std::filesystem::path root = std::filesystem::temp_directory_path() / "supermodal_layers_new";

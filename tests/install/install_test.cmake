@@ -1,5 +1,5 @@
 # Run by ctest: install, configure and build a host sample (SAMPLE, default embed_minimal) against the
-# installed package, run it on a scene, check its output.
+# installed package, run it, check its output. physics_only also checks what its link pulls in.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 function(run)
@@ -13,15 +13,54 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 if(NOT DEFINED SAMPLE)
   set(SAMPLE embed_minimal)
 endif()
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/samples/${SAMPLE} -B ${WORK_DIR}/host -G ${GENERATOR}
+set(host ${WORK_DIR}/host)
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/samples/${SAMPLE} -B ${host} -G ${GENERATOR}
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
-run(${CMAKE_COMMAND} --build ${WORK_DIR}/host)
+run(${CMAKE_COMMAND} --build ${host} --verbose) # --verbose: the link command, for physics_only
+set(build_output "${last_output}")
+
 if(SAMPLE STREQUAL "c_minimal") # the C host: its own output checks
-  run(${CMAKE_COMMAND} -DPROGRAM=${WORK_DIR}/host/c_minimal -DSCENE=${SOURCE_DIR}/samples/demo.json
+  run(${CMAKE_COMMAND} -DPROGRAM=${host}/c_minimal -DSCENE=${SOURCE_DIR}/samples/demo.json
       -P ${SOURCE_DIR}/tests/capi/run_c_minimal.cmake)
   return()
 endif()
-run(${WORK_DIR}/host/embed_minimal ${SOURCE_DIR}/tests/tools/scenes/projectile.json)
+
+if(SAMPLE STREQUAL "render_minimal")
+  run(${host}/render_minimal ${SOURCE_DIR}/tests/tools/scenes/projectile.json ${WORK_DIR}/frame.png)
+  if(NOT last_output MATCHES "wrote .*frame.png: 160x120 on " OR NOT EXISTS ${WORK_DIR}/frame.png)
+    message(FATAL_ERROR "unexpected host output:\n${last_output}")
+  endif()
+  message(STATUS "host output:\n${last_output}")
+  return()
+endif()
+
+if(SAMPLE STREQUAL "physics_only")
+  # The link must hold the engine and nothing of assets (JSON, assimp), the C API or render (EGL, GLES),
+  # static or shared: first the linker's command line, then every library the program loads.
+  set(forbidden "assimp|EGL|libGL|json|supermodal_assets|supermodal_c[.]|supermodal_render")
+  string(REGEX MATCH "[^\n]* -o physics_only[^\n]*" link_line "${build_output}")
+  if(NOT link_line MATCHES "libsupermodal[.]")
+    message(FATAL_ERROR "no link command naming libsupermodal in the build output:\n${build_output}")
+  endif()
+  if(link_line MATCHES "${forbidden}")
+    message(FATAL_ERROR "physics_only's link pulls in '${CMAKE_MATCH_0}':\n${link_line}")
+  endif()
+  find_program(LDD ldd REQUIRED)
+  run(${LDD} ${host}/physics_only)
+  if(last_output MATCHES "${forbidden}")
+    message(FATAL_ERROR "physics_only loads '${CMAKE_MATCH_0}':\n${last_output}")
+  endif()
+  message(STATUS "link:\n${link_line}\nloads:\n${last_output}")
+  run(${host}/physics_only)
+  # The ball (radius 0.5 m) dropped from 1 m rests on the ground after two seconds.
+  if(NOT last_output MATCHES "ball position 0[.]000000 0[.](49|50)[0-9]* 0[.]000000\nsteps 1000 hash [0-9a-f]+")
+    message(FATAL_ERROR "unexpected host output:\n${last_output}")
+  endif()
+  message(STATUS "host output:\n${last_output}")
+  return()
+endif()
+
+run(${host}/embed_minimal ${SOURCE_DIR}/tests/tools/scenes/projectile.json)
 if(NOT last_output MATCHES "ball position (2\\.99|3\\.00)")
   message(FATAL_ERROR "unexpected host output:\n${last_output}")
 endif()

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <regex>
 #include <string>
 #include <string_view>
@@ -17,23 +16,34 @@ namespace supermodal::test
 
 /// The engine's layers, lowest first: a file may include its own layer and those below, never above.
 /// core → geometry → the areas (dynamics → contact → modal → constraints: each area may use the ones
-/// before it) → world (registry, the systems that walk it, the step) → the C API → assets (scene, io,
-/// fit) → render.
+/// before it) → world (registry, the systems that walk it, the step) → assets (scene, io, fit) → the
+/// C API and render. The library column follows engine/CMakeLists.txt: each library links only those
+/// below it, so two areas on one level may include each other only inside one library (capi and render
+/// are side by side: each links assets, neither the other).
 struct Layer {
     std::string_view area;
     int level;
+    std::string_view library;
 };
 inline constexpr Layer k_engine_layers[] = {
-    {"core", 0},  {"geometry", 1}, {"dynamics", 2}, {"contact", 3}, {"modal", 4}, {"constraints", 5},
-    {"world", 6}, {"capi", 7},     {"scene", 8},    {"io", 8},      {"fit", 8},   {"render", 9},
+    {"core", 0, "engine"},  {"geometry", 1, "engine"},    {"dynamics", 2, "engine"}, {"contact", 3, "engine"},
+    {"modal", 4, "engine"}, {"constraints", 5, "engine"}, {"world", 6, "engine"},    {"scene", 7, "assets"},
+    {"io", 7, "assets"},    {"fit", 7, "assets"},         {"capi", 8, "c"},          {"render", 8, "render"},
 };
 
-[[nodiscard]] inline std::optional<int> layer_of(std::string_view area)
+[[nodiscard]] inline const Layer* layer_of(std::string_view area)
 {
     for (const Layer& l : k_engine_layers)
         if (l.area == area)
-            return l.level;
-    return std::nullopt;
+            return &l;
+    return nullptr;
+}
+
+/// True when a file of `own` may include a header of `theirs`: a lower level, or the same level in the
+/// same library.
+[[nodiscard]] inline bool may_include(const Layer& own, const Layer& theirs)
+{
+    return theirs.level < own.level || (theirs.level == own.level && theirs.library == own.library);
 }
 
 /// One include that points the wrong way: "engine/src/contact/penalty.h:11: ..." (path relative to root).
@@ -43,7 +53,8 @@ struct LayerViolation {
     std::string message;
 };
 
-/// Every upward include under `root`, in path order; also files in a folder that has no layer.
+/// Every upward include (or one into a sibling library) under `root`, in path order; also files in a
+/// folder that has no layer.
 [[nodiscard]] inline std::vector<LayerViolation> find_layer_violations(const std::filesystem::path& root)
 {
     namespace fs = std::filesystem;
@@ -59,8 +70,8 @@ struct LayerViolation {
     for (const fs::path& path : files) {
         const std::string rel = fs::relative(path, root).generic_string();
         const std::string area = rel.substr(0, rel.find('/'));
-        const std::optional<int> own = layer_of(area);
-        if (!own) {
+        const Layer* own = layer_of(area);
+        if (own == nullptr) {
             out.push_back({rel, 0, "folder '" + area + "' has no layer: add it to k_engine_layers"});
             continue;
         }
@@ -73,14 +84,18 @@ struct LayerViolation {
             const std::string target = m[1].str();
             if (target == "supermodal")
                 continue; // the public API: any layer may use it
-            const std::optional<int> theirs = layer_of(target);
-            if (!theirs)
+            const Layer* theirs = layer_of(target);
+            if (theirs == nullptr)
                 out.push_back({rel, n, "includes '" + target + "/', a folder with no layer"});
-            else if (*theirs > *own)
+            else if (!may_include(*own, *theirs))
                 out.push_back({rel, n,
                                "includes " + m[0].str().substr(m[0].str().find('"')) + " (" + target +
-                                   ", layer " + std::to_string(*theirs) + ") from " + area + " (layer " +
-                                   std::to_string(*own) + "): it points up a layer"});
+                                   ", layer " + std::to_string(theirs->level) + ", library " +
+                                   std::string(theirs->library) + ") from " + area + " (layer " +
+                                   std::to_string(own->level) + ", library " + std::string(own->library) +
+                                   "): " +
+                                   (theirs->level > own->level ? "it points up a layer"
+                                                               : "a library it does not link")});
         }
     }
     return out;

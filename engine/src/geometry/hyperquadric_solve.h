@@ -4,6 +4,7 @@
 // docs/geometry.md.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/math.h"
 #include "supermodal/shape.h"
 
@@ -25,8 +26,9 @@ struct HyperquadricCenter {
     bool is_bounded = false;   ///< The term normals span 3-D, so H grows without bound in every direction.
     bool is_non_empty = false; ///< H < 1 somewhere (at `point`).
 };
-/// Minimises H by damped Newton steps from the least-squares zero of the terms.
-[[nodiscard]] HyperquadricCenter hyperquadric_center(const ShapeDef& shape);
+/// Minimises H by damped Newton steps from the least-squares zero of the terms. Exported (SM_API) though
+/// internal: the scene loader in supermodal::assets checks boundedness with it.
+[[nodiscard]] SM_API HyperquadricCenter hyperquadric_center(const ShapeDef& shape);
 
 /// Distance [m] from `center` (with H(center) < 1) along the unit `direction` to the surface H = 1: the
 /// first crossing, exact for convex bodies (every γ ≥ 1). Bracketed by the slabs |n_i·x + d_i| ≤ 1 that
