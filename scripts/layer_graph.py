@@ -5,7 +5,8 @@ Reads every #include "area/..." under engine/src, counts the includes between fo
 docs/images/layers.dot (and layers.svg, layers.png when graphviz's `dot` is installed). Folders sit
 in rows by layer, the lowest at the bottom; an arrow A -> B labelled n means n includes from A into B
 (all point down).
-The layer table is the one tests/support/include_layers.h enforces.
+The layer table is the one tests/support/include_layers.h enforces (capi and render share the top row
+but are separate libraries: neither includes the other).
 Usage: scripts/layer_graph.py [repository root]
 """
 import collections
@@ -16,7 +17,7 @@ import subprocess
 import sys
 
 LAYERS = [["core"], ["geometry"], ["dynamics"], ["contact"], ["modal"], ["constraints"], ["world"],
-          ["capi"], ["scene", "io", "fit"], ["render"]]
+          ["scene", "io", "fit"], ["capi", "render"]]
 NOTES = {"core": "registry, tasks, faults", "geometry": "superquadrics, sampling, mass",
          "dynamics": "body components, rotation", "contact": "broadphase, MPR, manifolds, penalty",
          "modal": "lattice, bases, integrators, stress", "constraints": "constraint components, anchors",
