@@ -3,6 +3,8 @@
 // is built as Release; the host may install its own handler.
 #pragma once
 
+#include "supermodal/api.h"
+
 namespace supermodal
 {
 
@@ -12,9 +14,9 @@ using AssertHandler = bool (*)(const char* condition, const char* message, const
 
 /// Installs a handler (nullptr restores the default, which prints to stderr and aborts). Returns the
 /// previous one. Not thread-safe: set it once at start-up.
-AssertHandler set_assert_handler(AssertHandler handler);
+SM_API AssertHandler set_assert_handler(AssertHandler handler);
 
 /// True when the engine was built with assertions on.
-[[nodiscard]] bool asserts_enabled();
+[[nodiscard]] SM_API bool asserts_enabled();
 
 } // namespace supermodal

@@ -3,6 +3,7 @@
 // except world_valid() asserts that the handle is live.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -82,64 +83,64 @@ struct BodyDef {
 };
 
 /// The documented starting point: a dynamic water-density sphere of radius 0.5 m at the origin.
-[[nodiscard]] BodyDef default_body_def();
+[[nodiscard]] SM_API BodyDef default_body_def();
 
 /// Checks the shape, density > 0, finite pose and velocities, a non-zero orientation, that planes
 /// are static, and for modal bodies the ModalBodyDef ranges and a dynamic motion.
-[[nodiscard]] Status validate(const BodyDef& def);
+[[nodiscard]] SM_API Status validate(const BodyDef& def);
 
 /// Creates a body; asserts validate(def). In Release a refused def returns a null Entity. A modal body
 /// builds (or reuses) its basis here; if that build fails, the body is refused the same way: call
 /// modal_basis_for() first to get the reason.
-[[nodiscard]] Entity create_body(World& world, const BodyDef& def);
+[[nodiscard]] SM_API Entity create_body(World& world, const BodyDef& def);
 /// Destroys a body; its handle (and every copy) becomes stale.
-void destroy_body(World& world, Entity body);
+SM_API void destroy_body(World& world, Entity body);
 /// True if `body` is a live body of `world`; the only function that accepts stale handles.
-[[nodiscard]] bool world_valid(const World& world, Entity body);
+[[nodiscard]] SM_API bool world_valid(const World& world, Entity body);
 /// Live bodies in entity-index order (the deterministic order used by hashes and summaries).
-[[nodiscard]] std::vector<Entity> world_bodies(const World& world);
+[[nodiscard]] SM_API std::vector<Entity> world_bodies(const World& world);
 /// The body with this name, or a null Entity.
-[[nodiscard]] Entity find_body(const World& world, std::string_view name);
+[[nodiscard]] SM_API Entity find_body(const World& world, std::string_view name);
 
-[[nodiscard]] const std::string& body_name(const World& world, Entity body);
-[[nodiscard]] MotionType body_motion(const World& world, Entity body);
-[[nodiscard]] const ShapeDef& body_shape(const World& world, Entity body);
-[[nodiscard]] const MassProperties& body_mass_properties(const World& world, Entity body);
+[[nodiscard]] SM_API const std::string& body_name(const World& world, Entity body);
+[[nodiscard]] SM_API MotionType body_motion(const World& world, Entity body);
+[[nodiscard]] SM_API const ShapeDef& body_shape(const World& world, Entity body);
+[[nodiscard]] SM_API const MassProperties& body_mass_properties(const World& world, Entity body);
 /// Shape origin [m], world (as BodyDef::position).
-[[nodiscard]] Vec3 body_position(const World& world, Entity body);
+[[nodiscard]] SM_API Vec3 body_position(const World& world, Entity body);
 /// Centre of mass [m], world.
-[[nodiscard]] Vec3 body_center_of_mass(const World& world, Entity body);
-[[nodiscard]] Quat body_orientation(const World& world, Entity body);      ///< world_from_body.
-[[nodiscard]] Vec3 body_linear_velocity(const World& world, Entity body);  ///< [m/s], world.
-[[nodiscard]] Vec3 body_angular_velocity(const World& world, Entity body); ///< [rad/s], world.
+[[nodiscard]] SM_API Vec3 body_center_of_mass(const World& world, Entity body);
+[[nodiscard]] SM_API Quat body_orientation(const World& world, Entity body);      ///< world_from_body.
+[[nodiscard]] SM_API Vec3 body_linear_velocity(const World& world, Entity body);  ///< [m/s], world.
+[[nodiscard]] SM_API Vec3 body_angular_velocity(const World& world, Entity body); ///< [rad/s], world.
 /// Angular momentum about the centre of mass [kg·m²/s], world frame.
-[[nodiscard]] Vec3 body_angular_momentum(const World& world, Entity body);
+[[nodiscard]] SM_API Vec3 body_angular_momentum(const World& world, Entity body);
 /// Translational + rotational kinetic energy [J]; zero for static bodies.
-[[nodiscard]] double body_kinetic_energy(const World& world, Entity body);
+[[nodiscard]] SM_API double body_kinetic_energy(const World& world, Entity body);
 /// Gravitational potential energy −m·g·x relative to the world origin [J]; zero for non-dynamic bodies.
-[[nodiscard]] double body_potential_energy(const World& world, Entity body);
+[[nodiscard]] SM_API double body_potential_energy(const World& world, Entity body);
 /// Pose blended between the last two steps by World::interpolation_alpha(), for rendering.
-[[nodiscard]] Vec3 body_interpolated_position(const World& world, Entity body);
-[[nodiscard]] Quat body_interpolated_orientation(const World& world, Entity body);
+[[nodiscard]] SM_API Vec3 body_interpolated_position(const World& world, Entity body);
+[[nodiscard]] SM_API Quat body_interpolated_orientation(const World& world, Entity body);
 
-void set_body_position(World& world, Entity body, const Vec3& position);
-void set_body_orientation(World& world, Entity body, const Quat& orientation);
-void set_body_linear_velocity(World& world, Entity body, const Vec3& velocity);
-void set_body_angular_velocity(World& world, Entity body, const Vec3& angular_velocity);
+SM_API void set_body_position(World& world, Entity body, const Vec3& position);
+SM_API void set_body_orientation(World& world, Entity body, const Quat& orientation);
+SM_API void set_body_linear_velocity(World& world, Entity body, const Vec3& velocity);
+SM_API void set_body_angular_velocity(World& world, Entity body, const Vec3& angular_velocity);
 
 /// Adds a force [N] at a point [m] (both world frame) for the next step; the force also makes a
 /// torque about the centre of mass. Forces are cleared after each step. Ignored for non-dynamic bodies.
 /// On a modal body it also loads the modes: φ(point)ᵀ Rᵀ force, mapped at the pose of this call.
-void apply_force(World& world, Entity body, const Vec3& force, const Vec3& point);
+SM_API void apply_force(World& world, Entity body, const Vec3& force, const Vec3& point);
 /// Adds a force [N], world frame, through the centre of mass for the next step; a body force like
 /// gravity, so it does not deform a modal body.
-void apply_force_at_center(World& world, Entity body, const Vec3& force);
+SM_API void apply_force_at_center(World& world, Entity body, const Vec3& force);
 /// Adds a torque [N·m], world frame, for the next step.
-void apply_torque(World& world, Entity body, const Vec3& torque);
+SM_API void apply_torque(World& world, Entity body, const Vec3& torque);
 /// Changes momentum at once by an impulse [N·s] at a point [m], world frame; on a modal body also the
 /// modal rates, q̇ += φ(point)ᵀ Rᵀ impulse.
-void apply_linear_impulse(World& world, Entity body, const Vec3& impulse, const Vec3& point);
+SM_API void apply_linear_impulse(World& world, Entity body, const Vec3& impulse, const Vec3& point);
 /// Changes angular momentum at once by an angular impulse [N·m·s], world frame.
-void apply_angular_impulse(World& world, Entity body, const Vec3& impulse);
+SM_API void apply_angular_impulse(World& world, Entity body, const Vec3& impulse);
 
 } // namespace supermodal

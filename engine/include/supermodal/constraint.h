@@ -10,6 +10,7 @@
 // resized or reshaped.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -77,36 +78,36 @@ struct ConstraintDef {
     bool collide_connected = false; ///< False: a and b do not collide with each other.
 };
 
-[[nodiscard]] ConstraintDef default_constraint_def();
+[[nodiscard]] SM_API ConstraintDef default_constraint_def();
 /// Checks the numbers of a def (bodies are checked by create_constraint against the world).
-[[nodiscard]] Status validate(const ConstraintDef& def);
+[[nodiscard]] SM_API Status validate(const ConstraintDef& def);
 
 /// Creates a constraint. The rest state (distance, relative orientation, limits' zero) is taken
 /// from the bodies' poses now. Returns a null handle (and asserts) for an invalid def or stale body.
-[[nodiscard]] Constraint create_constraint(World& world, const ConstraintDef& def);
-void destroy_constraint(World& world, Constraint constraint);
-[[nodiscard]] bool world_valid(const World& world, Constraint constraint);
+[[nodiscard]] SM_API Constraint create_constraint(World& world, const ConstraintDef& def);
+SM_API void destroy_constraint(World& world, Constraint constraint);
+[[nodiscard]] SM_API bool world_valid(const World& world, Constraint constraint);
 /// Live constraints in index order.
-[[nodiscard]] std::vector<Constraint> world_constraints(const World& world);
+[[nodiscard]] SM_API std::vector<Constraint> world_constraints(const World& world);
 /// The first constraint with this name, or null.
-[[nodiscard]] Constraint find_constraint(const World& world, std::string_view name);
-[[nodiscard]] const ConstraintDef& constraint_def(const World& world, Constraint constraint);
+[[nodiscard]] SM_API Constraint find_constraint(const World& world, std::string_view name);
+[[nodiscard]] SM_API const ConstraintDef& constraint_def(const World& world, Constraint constraint);
 
 /// How far a constraint is from holding, measured after the last step.
 struct ConstraintError {
     double linear = 0.0;  ///< Anchor separation (point, weld) or length error (distance) [m].
     double angular = 0.0; ///< Weld orientation error, or how far past a joint limit [rad].
 };
-[[nodiscard]] ConstraintError constraint_error(const World& world, Constraint constraint);
+[[nodiscard]] SM_API ConstraintError constraint_error(const World& world, Constraint constraint);
 /// Spring force on body a in the last substep [N], world (b gets the opposite).
-[[nodiscard]] Vec3 constraint_force(const World& world, Constraint constraint);
+[[nodiscard]] SM_API Vec3 constraint_force(const World& world, Constraint constraint);
 /// True once the force exceeded break_force; a broken constraint stays inert.
-[[nodiscard]] bool constraint_broken(const World& world, Constraint constraint);
+[[nodiscard]] SM_API bool constraint_broken(const World& world, Constraint constraint);
 /// Both anchors in the world [m] (a's first); for a null b, anchor_b's world point.
-[[nodiscard]] std::pair<Vec3, Vec3> constraint_anchors(const World& world, Constraint constraint);
+[[nodiscard]] SM_API std::pair<Vec3, Vec3> constraint_anchors(const World& world, Constraint constraint);
 /// The largest linear error over unbroken constraints after the last step [m].
-[[nodiscard]] double world_max_constraint_error(const World& world);
+[[nodiscard]] SM_API double world_max_constraint_error(const World& world);
 /// Constraints broken since the world was made [-].
-[[nodiscard]] uint64_t world_broken_constraints(const World& world);
+[[nodiscard]] SM_API uint64_t world_broken_constraints(const World& world);
 
 } // namespace supermodal

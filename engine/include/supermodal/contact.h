@@ -7,6 +7,7 @@
 // clamped to the Coulomb cone; the anchors are part of the world's state (hashed, snapshotted).
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 
@@ -90,13 +91,13 @@ using ContactEventFn = void (*)(const ContactEvent& event, void* user_data);
 
 /// Registers fn (with user_data handed back on each call) for the world's contact events; a null fn
 /// removes it. Not allowed from inside a callback (asserted).
-void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data);
+SM_API void world_set_contact_callback(World& world, ContactEventFn fn, void* user_data);
 /// The contact events of the last step, in the order the callback receives them.
-[[nodiscard]] std::span<const ContactEvent> world_contact_events(const World& world);
+[[nodiscard]] SM_API std::span<const ContactEvent> world_contact_events(const World& world);
 
 /// The contacts found in the last step (the last substep), sorted by (a, b) index.
-[[nodiscard]] std::span<const ContactInfo> world_contacts(const World& world);
+[[nodiscard]] SM_API std::span<const ContactInfo> world_contacts(const World& world);
 /// The deepest penetration in the last step [m].
-[[nodiscard]] double world_max_penetration(const World& world);
+[[nodiscard]] SM_API double world_max_penetration(const World& world);
 
 } // namespace supermodal

@@ -5,6 +5,7 @@
 // BodyDef::shape and body_position / body_orientation); planes are left out.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/geometry.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -28,10 +29,10 @@ struct ExportDef {
     bool morph_targets = true; ///< Modal bodies: one morph target per mode; false exports them rigid.
 };
 /// 1 s at 30 frames per second, 32 segments, morph targets on.
-[[nodiscard]] ExportDef default_export_def();
+[[nodiscard]] SM_API ExportDef default_export_def();
 /// Checks the ranges in the field comments (the fps bound against a world's dt is checked by
 /// record_animation).
-[[nodiscard]] Status validate(const ExportDef& def);
+[[nodiscard]] SM_API Status validate(const ExportDef& def);
 
 /// One exported body: its rest mesh and its sampled motion.
 struct ExportBody {
@@ -64,20 +65,20 @@ struct ExportBodyMesh {
 /// the lattice take the field of the nearest lattice point). Errors: invalid def, fps above the world's
 /// step rate, a world with nothing but planes, a mesh for no such body or an empty one, a non-finite
 /// pose or amplitude (a diverging run), all with the body named.
-[[nodiscard]] Result<ExportRecording> record_animation(World& world, const ExportDef& def,
-                                                       std::span<const ExportBodyMesh> meshes = {});
+[[nodiscard]] SM_API Result<ExportRecording> record_animation(World& world, const ExportDef& def,
+                                                              std::span<const ExportBodyMesh> meshes = {});
 
 /// The GLB bytes of a recording: one node and mesh per body, one animation "simulation" with LINEAR
 /// translation, rotation and (modal bodies) morph-target weight channels.
-[[nodiscard]] Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& recording);
+[[nodiscard]] SM_API Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& recording);
 /// Writes glb_from_recording() to `path` atomically (temporary file in the same folder, then rename).
-[[nodiscard]] Status write_glb(const ExportRecording& recording, const std::string& path);
+[[nodiscard]] SM_API Status write_glb(const ExportRecording& recording, const std::string& path);
 /// Writes one OBJ per sample, `dir`/frame_000000.obj, ..., each with every body's deformed mesh in the
 /// world frame ("o name" groups); `dir` is made if missing; each file is written atomically.
-[[nodiscard]] Status write_obj_sequence(const ExportRecording& recording, const std::string& dir);
+[[nodiscard]] SM_API Status write_obj_sequence(const ExportRecording& recording, const std::string& dir);
 
 /// A body's mesh vertex at sample `frame`, deformed by its modes and posed [m], world frame: what a
 /// glTF viewer shows (in double precision). Needs frame < times.size() and vertex < the mesh's vertex count.
-[[nodiscard]] Vec3 exported_vertex(const ExportBody& body, size_t frame, size_t vertex);
+[[nodiscard]] SM_API Vec3 exported_vertex(const ExportBody& body, size_t frame, size_t vertex);
 
 } // namespace supermodal

@@ -4,6 +4,7 @@
 // reported to the host as an event. The step itself never fails.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/entity.h"
 #include "supermodal/world.h"
 
@@ -32,10 +33,10 @@ struct FaultEvent {
 using FaultEventFn = void (*)(const FaultEvent& event, void* user_data);
 
 /// Registers fn (user_data handed back on each call); a null fn removes it. Not from inside a step.
-void world_set_fault_callback(World& world, FaultEventFn fn, void* user_data);
+SM_API void world_set_fault_callback(World& world, FaultEventFn fn, void* user_data);
 /// The fault events of the last step.
-[[nodiscard]] std::span<const FaultEvent> world_fault_events(const World& world);
+[[nodiscard]] SM_API std::span<const FaultEvent> world_fault_events(const World& world);
 /// "body_non_finite" / "modal_non_finite".
-[[nodiscard]] const char* fault_kind_name(FaultKind kind);
+[[nodiscard]] SM_API const char* fault_kind_name(FaultKind kind);
 
 } // namespace supermodal

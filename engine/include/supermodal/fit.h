@@ -5,6 +5,7 @@
 // See docs/pipeline.md for the residual, the bounds and the measured accuracy.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/geometry.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -31,7 +32,7 @@ struct FitDef {
 };
 
 /// The documented defaults: no taper, no bend, ε ∈ [0.1, 2].
-[[nodiscard]] FitDef default_fit_def();
+[[nodiscard]] SM_API FitDef default_fit_def();
 
 /// A fitted superquadric and how well it fits.
 struct FitResult {
@@ -49,15 +50,15 @@ struct FitResult {
 };
 
 /// Fits one superquadric to points (equal weights). Needs ≥ 16 finite points that span 3-D space.
-[[nodiscard]] Result<FitResult> fit_superquadric(const std::vector<Vec3>& points,
-                                                 const FitDef& def = default_fit_def());
+[[nodiscard]] SM_API Result<FitResult> fit_superquadric(const std::vector<Vec3>& points,
+                                                        const FitDef& def = default_fit_def());
 /// Fits one superquadric to a mesh surface: its vertices weighted by their share of triangle area,
 /// plus samples inside triangles that are large next to the mean spacing.
-[[nodiscard]] Result<FitResult> fit_superquadric(const TriangleMesh& mesh,
-                                                 const FitDef& def = default_fit_def());
+[[nodiscard]] SM_API Result<FitResult> fit_superquadric(const TriangleMesh& mesh,
+                                                        const FitDef& def = default_fit_def());
 /// Splits the mesh surface into `parts` slabs along its longest principal axis (1-D k-means of the
 /// surface points' projections) and fits one superquadric to each. parts = 1 is fit_superquadric.
-[[nodiscard]] Result<std::vector<FitResult>> fit_superquadric_parts(const TriangleMesh& mesh, int parts,
-                                                                    const FitDef& def = default_fit_def());
+[[nodiscard]] SM_API Result<std::vector<FitResult>>
+fit_superquadric_parts(const TriangleMesh& mesh, int parts, const FitDef& def = default_fit_def());
 
 } // namespace supermodal

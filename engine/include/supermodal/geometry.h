@@ -6,6 +6,7 @@
 // the centre, on the axes and 10^6 radii away.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/math.h"
 #include "supermodal/shape.h"
 
@@ -19,32 +20,32 @@ namespace supermodal
 
 /// Natural log of Barr's inside-outside function ln F(p) (F < 1 inside), evaluated in log space so it
 /// never overflows. At the exact centre returns a large negative finite value (−1e300).
-[[nodiscard]] double inside_outside_log(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API double inside_outside_log(const ShapeDef& shape, const Vec3& p);
 /// F(p) itself, saturating at 1e300 instead of overflowing [-].
-[[nodiscard]] double inside_outside(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API double inside_outside(const ShapeDef& shape, const Vec3& p);
 /// The well-scaled contact measure F^(ε1/2) − 1 [-]: −1 at the centre, 0 on the surface, and roughly
 /// (distance along the ray from the centre) / (radius along that ray) outside. Finite everywhere.
-[[nodiscard]] double contact_measure(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API double contact_measure(const ShapeDef& shape, const Vec3& p);
 /// Gradient of contact_measure [1/m]; finite everywhere (zero at the centre).
-[[nodiscard]] Vec3 contact_measure_gradient(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API Vec3 contact_measure_gradient(const ShapeDef& shape, const Vec3& p);
 /// Unit outward normal of the level set through p (direction of the gradient); for p at the centre,
 /// returns +z.
-[[nodiscard]] Vec3 implicit_normal(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API Vec3 implicit_normal(const ShapeDef& shape, const Vec3& p);
 
 // ---- Superquadric parametric surface ----------------------------------------------------------------
 
 /// sign(x)·|x|^e, the signed power of Barr's parametric form.
-[[nodiscard]] double signed_power(double x, double e);
+[[nodiscard]] SM_API double signed_power(double x, double e);
 /// Surface point at latitude eta ∈ [−π/2, π/2] and longitude omega ∈ [−π, π] [m].
-[[nodiscard]] Vec3 surface_point(const ShapeDef& shape, double eta, double omega);
+[[nodiscard]] SM_API Vec3 surface_point(const ShapeDef& shape, double eta, double omega);
 /// Unit outward normal at (eta, omega); finite at the poles and at ε → 0 edges.
-[[nodiscard]] Vec3 surface_normal(const ShapeDef& shape, double eta, double omega);
+[[nodiscard]] SM_API Vec3 surface_normal(const ShapeDef& shape, double eta, double omega);
 
 // ---- Distances, projections, support, bounds --------------------------------------------------------
 
 /// Signed distance from p to the surface along the ray from the centre through p [m]: |p|·(1 − F^(−ε1/2)).
 /// Negative inside. An upper bound on the true distance's magnitude.
-[[nodiscard]] double radial_distance(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API double radial_distance(const ShapeDef& shape, const Vec3& p);
 
 /// Result of an approximate closest-point projection.
 struct SurfaceProjection {
@@ -56,12 +57,12 @@ struct SurfaceProjection {
     bool converged = false;
 };
 /// Closest point on the (undeformed) superquadric surface to p.
-[[nodiscard]] SurfaceProjection closest_point(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API SurfaceProjection closest_point(const ShapeDef& shape, const Vec3& p);
 
 /// Support point: argmax over the shape of dot(direction, x) [m], shape frame. Exact (dual
 /// superquadric, exponents 2 − ε) for convex superquadrics (ε1, ε2 ≤ 2); for others, the support of
 /// the convex hull. direction need not be unit; zero gives the +z pole.
-[[nodiscard]] Vec3 support_point(const ShapeDef& shape, const Vec3& direction);
+[[nodiscard]] SM_API Vec3 support_point(const ShapeDef& shape, const Vec3& direction);
 
 /// Axis-aligned box [m].
 struct Aabb {
@@ -71,18 +72,18 @@ struct Aabb {
 /// Tight world-space box of the shape at a pose (taper and bend included). Planes give ±1e300.
 /// Deformed superquadrics and hyperquadrics bound a mesh whose vertices are computed once per distinct
 /// shape and cached process-wide (thread-safe; the result is bit-identical to recomputing).
-[[nodiscard]] Aabb world_aabb(const ShapeDef& shape, const Vec3& position, const Quat& orientation);
+[[nodiscard]] SM_API Aabb world_aabb(const ShapeDef& shape, const Vec3& position, const Quat& orientation);
 
 // ---- Barr deformations (taper, then bend, along the polar axis z) -----------------------------------
 
 /// True if the shape has a non-zero taper or bend.
-[[nodiscard]] bool is_deformed(const ShapeDef& shape);
+[[nodiscard]] SM_API bool is_deformed(const ShapeDef& shape);
 /// Undeformed shape point → deformed shape point [m].
-[[nodiscard]] Vec3 deform_point(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API Vec3 deform_point(const ShapeDef& shape, const Vec3& p);
 /// Jacobian ∂deform_point/∂p at p [-].
-[[nodiscard]] Mat3 deform_jacobian(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API Mat3 deform_jacobian(const ShapeDef& shape, const Vec3& p);
 /// Normal at deformed point through the inverse-transpose of the Jacobian at undeformed p; unit.
-[[nodiscard]] Vec3 deform_normal(const ShapeDef& shape, const Vec3& p, const Vec3& normal);
+[[nodiscard]] SM_API Vec3 deform_normal(const ShapeDef& shape, const Vec3& p, const Vec3& normal);
 /// Result of inverting the deformation.
 struct UndeformResult {
     Vec3 point{}; ///< Undeformed point [m] (best estimate even when !converged; always finite).
@@ -90,17 +91,17 @@ struct UndeformResult {
     int iterations = 0;
 };
 /// Deformed point → undeformed point by Newton's method with a convergence guard.
-[[nodiscard]] UndeformResult undeform_point(const ShapeDef& shape, const Vec3& q);
+[[nodiscard]] SM_API UndeformResult undeform_point(const ShapeDef& shape, const Vec3& q);
 /// Contact measure of a possibly deformed superquadric or hyperquadric at shape point q: through the
 /// inverse map when deformed. Where the inverse fails, returns a conservative positive value (outside).
-[[nodiscard]] double shape_measure(const ShapeDef& shape, const Vec3& q);
+[[nodiscard]] SM_API double shape_measure(const ShapeDef& shape, const Vec3& q);
 
 // ---- Hyperquadrics -----------------------------------------------------------------------------------
 
 /// H(p) = Σ |n_i·p + d_i|^γ_i (H < 1 inside), saturating at 1e300.
-[[nodiscard]] double hyperquadric_value(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API double hyperquadric_value(const ShapeDef& shape, const Vec3& p);
 /// Unit outward normal ∇H/|∇H| at p.
-[[nodiscard]] Vec3 hyperquadric_normal(const ShapeDef& shape, const Vec3& p);
+[[nodiscard]] SM_API Vec3 hyperquadric_normal(const ShapeDef& shape, const Vec3& p);
 
 // ---- Surface samples and meshes ----------------------------------------------------------------------
 
@@ -112,8 +113,8 @@ struct SurfaceSample {
 };
 /// Samples spaced about `spacing` [m] apart along the surface, evenly (not bunched at edges), with
 /// areas. Count grows like area / spacing²; capped at max_count (spacing is widened to fit).
-[[nodiscard]] std::vector<SurfaceSample> sample_surface(const ShapeDef& shape, double spacing,
-                                                        int max_count = 100000);
+[[nodiscard]] SM_API std::vector<SurfaceSample> sample_surface(const ShapeDef& shape, double spacing,
+                                                               int max_count = 100000);
 
 /// Indexed triangle mesh with per-vertex normals, shape frame. Watertight: every edge is shared by
 /// exactly two triangles; no degenerate triangles.
@@ -124,8 +125,8 @@ struct TriangleMesh {
 };
 /// Tessellates the shape with about `resolution` segments around the equator (≥ 4); deformed shapes
 /// and hyperquadrics included.
-[[nodiscard]] TriangleMesh tessellate(const ShapeDef& shape, int resolution);
+[[nodiscard]] SM_API TriangleMesh tessellate(const ShapeDef& shape, int resolution);
 /// Enclosed volume of a closed mesh (divergence theorem) [m³].
-[[nodiscard]] double mesh_volume(const TriangleMesh& mesh);
+[[nodiscard]] SM_API double mesh_volume(const TriangleMesh& mesh);
 
 } // namespace supermodal

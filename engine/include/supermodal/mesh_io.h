@@ -4,6 +4,7 @@
 // its node transforms. See docs/pipeline.md.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/geometry.h"
 #include "supermodal/result.h"
 
@@ -32,7 +33,7 @@ struct ImportDef {
 };
 
 /// The documented defaults: units and up axis from the file, welded vertices.
-[[nodiscard]] ImportDef default_import_def();
+[[nodiscard]] SM_API ImportDef default_import_def();
 
 /// An imported mesh and what the import decided.
 struct ImportedMesh {
@@ -46,12 +47,12 @@ struct ImportedMesh {
 /// Reads a mesh file. Errors (Error::file is the path) for a missing or unreadable file, a file
 /// assimp cannot parse (its message is passed on), a file without triangles, non-finite coordinates,
 /// and bad ImportDef values.
-[[nodiscard]] Result<ImportedMesh> import_mesh(const std::string& path,
-                                               const ImportDef& def = default_import_def());
+[[nodiscard]] SM_API Result<ImportedMesh> import_mesh(const std::string& path,
+                                                      const ImportDef& def = default_import_def());
 
 /// Lower-case name of an up axis: "from_file", "+x", "+y", "+z", "-x", "-y", "-z".
-[[nodiscard]] const char* up_axis_name(UpAxis axis);
+[[nodiscard]] SM_API const char* up_axis_name(UpAxis axis);
 /// Parses an up_axis_name() (also "x", "y", "z" for the positive axes); false when unknown.
-[[nodiscard]] bool parse_up_axis(const std::string& name, UpAxis& out);
+[[nodiscard]] SM_API bool parse_up_axis(const std::string& name, UpAxis& out);
 
 } // namespace supermodal

@@ -9,6 +9,7 @@
 // 1/√kg and the modal amplitudes q have units √kg·m; each mode obeys q̈ + 2ζω q̇ + ω² q = φᵀ f.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/body.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
@@ -70,9 +71,9 @@ struct ModalBasisDef {
 
 /// The documented starting point: a sphere of 1 m diameter, soft (E = 10 MPa, ν = 0.3, ρ = 1000 kg/m³),
 /// 12 modes, 20-node cells on an automatic lattice (4³).
-[[nodiscard]] ModalBasisDef default_modal_basis_def();
+[[nodiscard]] SM_API ModalBasisDef default_modal_basis_def();
 /// Checks ranges (see the field comments) and the shape.
-[[nodiscard]] Status validate(const ModalBasisDef& def);
+[[nodiscard]] SM_API Status validate(const ModalBasisDef& def);
 
 /// A guess at what a mode looks like, from its displacement field about the body's longest axis
 /// (bodies without one, longest side under 1.5 × the next, get Other).
@@ -83,7 +84,7 @@ enum class ModeKind : uint8_t {
     Other,   ///< None of the above dominates (plate, breathing, mixed modes; compact bodies).
 };
 /// "bend", "torsion", "axial" or "other".
-[[nodiscard]] const char* mode_kind_name(ModeKind kind);
+[[nodiscard]] SM_API const char* mode_kind_name(ModeKind kind);
 
 /// How the basis came out: checks and costs. Filled by build_modal_basis.
 struct ModalDiagnostics {
@@ -132,13 +133,13 @@ struct ModalBasis {
 };
 
 /// Nodes per cell of an element order: 8 or 20.
-[[nodiscard]] int lattice_nodes_per_cell(int element_order);
+[[nodiscard]] SM_API int lattice_nodes_per_cell(int element_order);
 
 /// Builds the lattice, integrates stiffness and mass over the body, solves K φ = ω² M φ, drops the six
 /// rigid modes and keeps the lowest mode_count elastic ones, mass-normalised. Errors: invalid def, a
 /// lattice with fewer elastic degrees of freedom than modes, more than six zero-frequency modes (the
 /// material falls apart into pieces on this lattice: refine it), or a solver that does not converge.
-[[nodiscard]] Result<ModalBasis> build_modal_basis(const ModalBasisDef& def);
+[[nodiscard]] SM_API Result<ModalBasis> build_modal_basis(const ModalBasisDef& def);
 
 /// Where a point sits in a basis's lattice: the nodes whose shape functions reach it and their values.
 struct LatticeWeights {
@@ -149,26 +150,27 @@ struct LatticeWeights {
 /// Shape-function weights of a rest-shape point [m] (shape frame). In a cell without nodes the field of
 /// its proxy cell is extended, at most one cell beyond it; points outside the lattice box are clamped
 /// onto it. Compute once per surface sample; then modal_displacement costs 3·count·r multiply-adds.
-[[nodiscard]] LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape);
+[[nodiscard]] SM_API LatticeWeights modal_weights(const ModalBasis& basis, const Vec3& point_shape);
 /// Displacement [m], shape frame, of a point with precomputed weights, for modal amplitudes q [√kg·m].
 /// q may hold fewer than mode_count amplitudes: the missing ones count as zero.
-[[nodiscard]] Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights,
-                                      std::span<const double> q);
+[[nodiscard]] SM_API Vec3 modal_displacement(const ModalBasis& basis, const LatticeWeights& weights,
+                                             std::span<const double> q);
 /// Displacement [m], shape frame, of a rest-shape point [m] for modal amplitudes q [√kg·m].
-[[nodiscard]] Vec3 modal_displacement(const ModalBasis& basis, const Vec3& point_shape,
-                                      std::span<const double> q);
+[[nodiscard]] SM_API Vec3 modal_displacement(const ModalBasis& basis, const Vec3& point_shape,
+                                             std::span<const double> q);
 /// Displacement [m] of every lattice node for amplitudes q (fewer than mode_count: the rest are zero),
 /// into out (resized to the node count): 3·r multiply-adds per node, once per frame. Then each of many
 /// points costs 3·count multiply-adds (interpolate_nodal) instead of 3·count·r: how a render mesh of
 /// 10k vertices deforms (docs/modal.md "Deforming a render mesh").
-void modal_nodal_displacements(const ModalBasis& basis, std::span<const double> q, std::vector<Vec3>& out);
+SM_API void modal_nodal_displacements(const ModalBasis& basis, std::span<const double> q,
+                                      std::vector<Vec3>& out);
 /// Displacement [m] of a point with precomputed weights from modal_nodal_displacements' output.
-[[nodiscard]] Vec3 interpolate_nodal(const LatticeWeights& weights, std::span<const Vec3> nodal);
+[[nodiscard]] SM_API Vec3 interpolate_nodal(const LatticeWeights& weights, std::span<const Vec3> nodal);
 
 /// Shares bases between identical bodies: keyed by every field of the def (shape, material, lattice,
 /// mode count, solver), compared exactly. Thread-safe; a build runs outside the lock, so two threads
 /// asking for the same new basis may both build it (the first result is kept).
-class ModalBasisCache
+class SM_API ModalBasisCache
 {
   public:
     /// The cached basis for def, building it on first use. Failed builds are not cached.
@@ -188,20 +190,21 @@ class World;
 /// The basis a modal BodyDef will use in `world`: built now, or found in the world's cache. create_body
 /// calls the same; call this first to learn why a build fails (too many modes for the lattice, a
 /// lattice too coarse to hold the body together). Errors for rigid or invalid defs too.
-[[nodiscard]] Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world, const BodyDef& def);
+[[nodiscard]] SM_API Result<std::shared_ptr<const ModalBasis>> modal_basis_for(World& world,
+                                                                               const BodyDef& def);
 
 /// A modal body's basis, or null for a rigid body.
-[[nodiscard]] const ModalBasis* body_modal_basis(const World& world, Entity body);
+[[nodiscard]] SM_API const ModalBasis* body_modal_basis(const World& world, Entity body);
 
 /// Modal amplitudes and their rates; empty for a rigid body.
 struct BodyModalState {
     std::vector<double> amplitudes; ///< (r) q [√kg·m], whole shape (the plastic offsets q_p included).
     std::vector<double> velocities; ///< (r) q̇ [√kg·m/s]; with central difference, half a step behind q.
 };
-[[nodiscard]] BodyModalState body_modal_state(const World& world, Entity body);
+[[nodiscard]] SM_API BodyModalState body_modal_state(const World& world, Entity body);
 /// Sets a modal body's amplitudes and rates (both of its mode count, finite); its surface follows.
-Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
-                            std::span<const double> velocities);
+SM_API Status set_body_modal_state(World& world, Entity body, std::span<const double> amplitudes,
+                                   std::span<const double> velocities);
 /// How a modal body uses its modes. Adaptive bodies (ModalBodyDef::adaptive_tolerance > 0, scene
 /// "dynamics": "auto") step only the lowest ones their loads need; the others step all of them.
 struct BodyModalActivity {
@@ -233,16 +236,16 @@ struct BodyModalActivity {
     double lattice_error_estimate = 0.0;
 };
 /// Zeros for a rigid body.
-[[nodiscard]] BodyModalActivity body_modal_activity(const World& world, Entity body);
+[[nodiscard]] SM_API BodyModalActivity body_modal_activity(const World& world, Entity body);
 /// Elastic energy plus kinetic energy of the modes, ½ Σ (q̇² + ω² (q − q_p)²) [J]; 0 for a rigid body.
-[[nodiscard]] double body_modal_energy(const World& world, Entity body);
+[[nodiscard]] SM_API double body_modal_energy(const World& world, Entity body);
 /// The plastic part of a modal body's state (BodyModalState's companion; zero for elastic bodies).
 struct BodyPlasticState {
     std::vector<double> offsets; ///< (r) q_p [√kg·m]: the rest shape has moved by Σ φ_k q_p,k.
     double plastic_strain = 0.0; ///< Accumulated equivalent plastic strain at the yielding points [-].
     double yield_stress = 0.0;   ///< Current yield σ_y + H ε_p [Pa]; ∞ for an elastic body.
 };
-[[nodiscard]] BodyPlasticState body_plastic_state(const World& world, Entity body);
+[[nodiscard]] SM_API BodyPlasticState body_plastic_state(const World& world, Entity body);
 
 /// How far a modal body's reduced solution is from its full lattice, for the loads of its last substep
 /// (docs/modal.md, "Accuracy report"). All in the body frame.
@@ -263,7 +266,7 @@ struct ModalAccuracy {
 /// The accuracy report of a modal body (zeros for a rigid body, or one without loads and deformation).
 /// The first call for a basis assembles its lattice and factors K and M (about as long as the basis's
 /// assembly plus two sparse factorisations); later calls cost a few sparse products and solves.
-[[nodiscard]] ModalAccuracy body_modal_accuracy(const World& world, Entity body);
+[[nodiscard]] SM_API ModalAccuracy body_modal_accuracy(const World& world, Entity body);
 
 /// Stress of a modal body's elastic deformation (q − q_p).
 struct BodyStress {
@@ -272,12 +275,13 @@ struct BodyStress {
 };
 /// Largest von Mises stress over the stress points (per lattice cell, the 27 points ξ ∈ {−1, 0, 1}³
 /// that lie in the body; docs/modal.md "Stress and plasticity"). Zero for a rigid body.
-[[nodiscard]] BodyStress body_max_stress(const World& world, Entity body);
+[[nodiscard]] SM_API BodyStress body_max_stress(const World& world, Entity body);
 /// Stress tensor [Pa], shape frame, at a rest point [m] of a modal body's elastic deformation, Voigt order
 /// (xx, yy, zz, yz, xz, xy); zeros for a rigid body.
-[[nodiscard]] std::array<double, 6> body_stress_at(const World& world, Entity body, const Vec3& point_shape);
+[[nodiscard]] SM_API std::array<double, 6> body_stress_at(const World& world, Entity body,
+                                                          const Vec3& point_shape);
 /// von Mises equivalent of a Voigt stress [Pa].
-[[nodiscard]] double von_mises_stress(const std::array<double, 6>& voigt);
+[[nodiscard]] SM_API double von_mises_stress(const std::array<double, 6>& voigt);
 
 /// Inside-outside test of a body's current (deformed) shape at a world point.
 struct BodyPointTest {
@@ -290,10 +294,10 @@ struct BodyPointTest {
 /// field (X + u(X) = p), tested there, and the rest gradient carried forward by F⁻ᵀ (F = I + ∇u); where
 /// Newton fails (a folded field) the point counts as outside. Rigid bodies: the shape's own test.
 /// (Contact does not use this yet: docs/modal.md "Deformed surfaces".)
-[[nodiscard]] BodyPointTest body_point_test(const World& world, Entity body, const Vec3& world_point);
+[[nodiscard]] SM_API BodyPointTest body_point_test(const World& world, Entity body, const Vec3& world_point);
 
 /// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
 /// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).
-[[nodiscard]] Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);
+[[nodiscard]] SM_API Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);
 
 } // namespace supermodal

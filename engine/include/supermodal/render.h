@@ -6,6 +6,7 @@
 // docs/rendering.md. This header includes no GL or EGL header: the renderer is an opaque handle.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
@@ -45,9 +46,9 @@ struct RenderDef {
     RenderFault fault = RenderFault::None; ///< Test hook; leave None.
 };
 /// The documented starting point: 1280×720, 4× MSAA, 32 segments, grid on, true deformation.
-[[nodiscard]] RenderDef default_render_def();
+[[nodiscard]] SM_API RenderDef default_render_def();
 /// Checks the ranges in the field comments.
-[[nodiscard]] Status validate(const RenderDef& def);
+[[nodiscard]] SM_API Status validate(const RenderDef& def);
 
 /// An 8-bit RGBA image, rows top to bottom, 4 bytes per pixel.
 struct Image {
@@ -64,10 +65,10 @@ enum class PoseSource : uint8_t {
 
 /// The camera a frame uses: `camera` with an absent target or a zero distance filled in so that every
 /// non-plane body's world box fits in the view (a margin of 10%). Yaw, pitch and fov are kept.
-[[nodiscard]] CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect);
+[[nodiscard]] SM_API CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect);
 
 /// An offscreen renderer with its own EGL display, context and framebuffer. One thread at a time.
-class Renderer
+class SM_API Renderer
 {
   public:
     /// Opens EGL (surfaceless Mesa platform), makes an OpenGL ES 3.0 context and a framebuffer of
@@ -116,26 +117,26 @@ struct CameraRay {
 /// The ray through pixel (x, y) of a width × height frame drawn by render() with `camera` (absent
 /// parts framed as render() frames them). Pixels count from the top-left corner, x right, y down; the
 /// centre of pixel (i, j) is (i + 0.5, j + 0.5) [px].
-[[nodiscard]] CameraRay camera_ray(const World& world, const CameraDef& camera, int width, int height,
-                                   double x, double y);
+[[nodiscard]] SM_API CameraRay camera_ray(const World& world, const CameraDef& camera, int width, int height,
+                                          double x, double y);
 /// Where a world point [m] lands in that frame [px] (same pixel convention), through the matrix the
 /// renderer draws with; nothing when the point is behind the eye.
-[[nodiscard]] std::optional<std::array<double, 2>>
+[[nodiscard]] SM_API std::optional<std::array<double, 2>>
 project_to_pixel(const World& world, const CameraDef& camera, int width, int height, const Vec3& point);
 
 /// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
 /// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1].
-[[nodiscard]] std::vector<Vec3> scene_body_colors(const Scene& scene);
+[[nodiscard]] SM_API std::vector<Vec3> scene_body_colors(const Scene& scene);
 /// Gives the renderer the scene's look for the world built from it: scene_body_colors() and each body's
 /// render mesh (SceneBody::render_mesh), matched in world_bodies() order.
-void apply_scene_looks(Renderer& renderer, const Scene& scene, const World& world);
+SM_API void apply_scene_looks(Renderer& renderer, const Scene& scene, const World& world);
 
 // ---- Images ---------------------------------------------------------------------------------------
 
 /// Writes a PNG (stb_image_write). Errors name the path.
-Status write_png(const std::string& path, const Image& image);
+SM_API Status write_png(const std::string& path, const Image& image);
 /// Reads a PNG as RGBA.
-[[nodiscard]] Result<Image> read_png(const std::string& path);
+[[nodiscard]] SM_API Result<Image> read_png(const std::string& path);
 
 /// Pixel-wise comparison of two images of the same size.
 struct ImageDiff {
@@ -146,6 +147,7 @@ struct ImageDiff {
 };
 /// Compares; `tolerance` is the largest per-channel difference [0, 255] that still counts as equal.
 /// Errors when the sizes differ.
-[[nodiscard]] Result<ImageDiff> compare_images(const Image& actual, const Image& expected, int tolerance);
+[[nodiscard]] SM_API Result<ImageDiff> compare_images(const Image& actual, const Image& expected,
+                                                      int tolerance);
 
 } // namespace supermodal

@@ -3,6 +3,7 @@
 // Every error names the file, the JSON pointer, what was found and what was expected.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/body.h"
 #include "supermodal/constraint.h"
 #include "supermodal/geometry.h"
@@ -91,11 +92,12 @@ struct Scene {
 };
 
 /// Reads and validates a scene file.
-[[nodiscard]] Result<Scene> load_scene(const std::string& path);
+[[nodiscard]] SM_API Result<Scene> load_scene(const std::string& path);
 /// Parses and validates scene JSON text; `source` names it in errors.
-[[nodiscard]] Result<Scene> parse_scene(std::string_view json_text, const std::string& source = "<string>");
+[[nodiscard]] SM_API Result<Scene> parse_scene(std::string_view json_text,
+                                               const std::string& source = "<string>");
 /// Makes a world holding the scene's bodies and then its constraints, created in file order.
-[[nodiscard]] Result<World> build_world(const Scene& scene);
+[[nodiscard]] SM_API Result<World> build_world(const Scene& scene);
 
 // ---- Writing scenes (engine/src/scene/writer.cpp) --------------------------------------------------
 
@@ -104,15 +106,16 @@ struct Scene {
 /// shortest text that reads back to the same double. Young's modulus, Poisson's ratio and (unless the
 /// body's own differs) the damping ratio of a modal body are its material's, as in the file format;
 /// BodyDef::friction and restitution are not written (build_world takes them from the material).
-[[nodiscard]] std::string scene_to_json(const Scene& scene);
+[[nodiscard]] SM_API std::string scene_to_json(const Scene& scene);
 /// Writes scene_to_json(scene) to `path` atomically: a temporary file in the same folder, flushed,
 /// then renamed over `path`, so a reader never sees half a file and a failure leaves `path` as it was.
-[[nodiscard]] Status save_scene(const Scene& scene, const std::string& path);
+[[nodiscard]] SM_API Status save_scene(const Scene& scene, const std::string& path);
 /// Copies what a running world holds back into its scene so that saving keeps what the user sees:
 /// every scene body's pose and velocities (in its parent's frame for parts, as the format wants) and,
 /// when `include_shapes`, its current shape (after set_body_shape()). Bodies are matched by name.
 /// Modal amplitudes and contact caches are not part of format v1 and are not kept. Fails, changing
 /// nothing, when a scene body has no body of that name in the world.
-[[nodiscard]] Status refresh_scene_from_world(Scene& scene, const World& world, bool include_shapes = true);
+[[nodiscard]] SM_API Status refresh_scene_from_world(Scene& scene, const World& world,
+                                                     bool include_shapes = true);
 
 } // namespace supermodal

@@ -3,6 +3,7 @@
 // z is the polar axis, radii (a1, a2, a3) lie along (x, y, z).
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
 
@@ -52,10 +53,10 @@ struct ShapeDef {
 };
 
 /// The documented starting point: a unit-diameter sphere.
-[[nodiscard]] ShapeDef default_shape_def();
+[[nodiscard]] SM_API ShapeDef default_shape_def();
 
 /// Checks ranges: radii > 0 and finite, ε in (0, 4], taper in [-1, 1], plane normal non-zero.
-[[nodiscard]] Status validate(const ShapeDef& def);
+[[nodiscard]] SM_API Status validate(const ShapeDef& def);
 
 /// Mass, centre of mass and principal inertia of a solid of uniform density.
 struct MassProperties {
@@ -73,10 +74,10 @@ struct MassProperties {
 };
 
 /// Closed-form volume of a superquadric: V = 2·a1·a2·a3·ε1·ε2·B(ε1/2+1, ε1)·B(ε2/2, ε2/2) [m³].
-[[nodiscard]] double superquadric_volume(const ShapeDef& def);
+[[nodiscard]] SM_API double superquadric_volume(const ShapeDef& def);
 
 /// Closed-form mass properties (Jaklič, Leonardis & Solina 2000, Beta functions) for density ρ [kg/m³].
 /// Planes have no finite mass: returns zeros.
-[[nodiscard]] MassProperties compute_mass_properties(const ShapeDef& def, double density);
+[[nodiscard]] SM_API MassProperties compute_mass_properties(const ShapeDef& def, double density);
 
 } // namespace supermodal

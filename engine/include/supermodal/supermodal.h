@@ -17,6 +17,8 @@
 #ifndef SUPERMODAL_SUPERMODAL_H
 #define SUPERMODAL_SUPERMODAL_H
 
+#include "supermodal/api.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -40,11 +42,11 @@ typedef enum sm_status {
 } sm_status;
 
 /* Constant name of a status ("SM_ERROR_SCENE"); "SM_UNKNOWN_STATUS" for values outside the enum. */
-const char* sm_status_string(sm_status status);
+SM_API const char* sm_status_string(sm_status status);
 /* Message of the last call on this thread: "" after a success, else what failed and where, e.g.
  * "<string>: /bodies/1/shape/radii/0: expected a number > 0, found -1". Valid until the next call of this
  * API on the same thread; copy it to keep it. */
-const char* sm_last_error(void);
+SM_API const char* sm_last_error(void);
 
 /* ---- Plain data ------------------------------------------------------------------------------------- */
 
@@ -80,49 +82,49 @@ typedef struct sm_world_def {
     int thread_count;          /* Threads for the step, in [1, 64]; results are bit-identical for any. */
 } sm_world_def;
 
-sm_world_def sm_world_def_default(void);
+SM_API sm_world_def sm_world_def_default(void);
 
 /* Makes an empty world. *out_world receives it on success. */
-sm_status sm_world_create(const sm_world_def* def, sm_world** out_world);
+SM_API sm_status sm_world_create(const sm_world_def* def, sm_world** out_world);
 /* Loads a scene file (docs/scene_format.md) and builds its world. Errors (SM_ERROR_SCENE) name the file
  * and the JSON pointer of the bad value. */
-sm_status sm_world_create_from_file(const char* path, sm_world** out_world);
+SM_API sm_status sm_world_create_from_file(const char* path, sm_world** out_world);
 /* As sm_world_create_from_file, from NUL-terminated scene JSON text; errors name "<string>". Includes in
  * the text resolve against the current directory. */
-sm_status sm_world_create_from_json(const char* json, sm_world** out_world);
+SM_API sm_status sm_world_create_from_json(const char* json, sm_world** out_world);
 /* Frees a world; NULL is ignored. Its body handles become meaningless; snapshots stay valid to free. */
-void sm_world_destroy(sm_world* world);
+SM_API void sm_world_destroy(sm_world* world);
 
 /* The settings in force. */
-sm_status sm_world_get_def(const sm_world* world, sm_world_def* out_def);
+SM_API sm_status sm_world_get_def(const sm_world* world, sm_world_def* out_def);
 /* Changes settings between steps. thread_count cannot change; dt can change only before the first step
  * (the world's time is step_count * dt). Checked as at creation; on failure nothing changes. */
-sm_status sm_world_set_def(sm_world* world, const sm_world_def* def);
+SM_API sm_status sm_world_set_def(sm_world* world, const sm_world_def* def);
 /* Changes gravity [m/s^2], world frame, from the next step on. */
-sm_status sm_world_set_gravity(sm_world* world, sm_vec3 gravity);
+SM_API sm_status sm_world_set_gravity(sm_world* world, sm_vec3 gravity);
 
 /* Runs one fixed step of dt. */
-sm_status sm_world_step(sm_world* world);
+SM_API sm_status sm_world_step(sm_world* world);
 /* Adds seconds [s] (finite, >= 0) of real time and runs the whole steps it makes up (at most
  * max_steps_per_advance; the rest of a backlog is dropped). *out_steps (may be NULL) gets the count. */
-sm_status sm_world_advance(sm_world* world, double seconds, int* out_steps);
+SM_API sm_status sm_world_advance(sm_world* world, double seconds, int* out_steps);
 /* Fraction [0, 1) of a step left over by sm_world_advance(): blend previous and current poses by it
  * (sm_body_get_interpolated_pose does). */
-sm_status sm_world_get_interpolation_alpha(const sm_world* world, double* out_alpha);
-sm_status sm_world_get_time(const sm_world* world, double* out_seconds); /* Simulated time [s]. */
-sm_status sm_world_get_step_count(const sm_world* world, uint64_t* out_steps);
+SM_API sm_status sm_world_get_interpolation_alpha(const sm_world* world, double* out_alpha);
+SM_API sm_status sm_world_get_time(const sm_world* world, double* out_seconds); /* Simulated time [s]. */
+SM_API sm_status sm_world_get_step_count(const sm_world* world, uint64_t* out_steps);
 /* FNV-1a hash of the whole dynamic state: same scene, same build, same calls -> same hash. */
-sm_status sm_world_get_state_hash(const sm_world* world, uint64_t* out_hash);
+SM_API sm_status sm_world_get_state_hash(const sm_world* world, uint64_t* out_hash);
 
 /* ---- Snapshots -------------------------------------------------------------------------------------- */
 
 /* Copies the world's dynamic state (poses, velocities, contact caches, modal amplitudes, time). */
-sm_status sm_world_snapshot(const sm_world* world, sm_snapshot** out_snapshot);
+SM_API sm_status sm_world_snapshot(const sm_world* world, sm_snapshot** out_snapshot);
 /* Puts a snapshot's state back: the world then steps bit-identically to the one it came from.
  * SM_ERROR_SNAPSHOT_MISMATCH if bodies or constraints were created or destroyed since. */
-sm_status sm_world_restore(sm_world* world, const sm_snapshot* snapshot);
+SM_API sm_status sm_world_restore(sm_world* world, const sm_snapshot* snapshot);
 /* Frees a snapshot; NULL is ignored. Independent of the world it came from. */
-void sm_snapshot_destroy(sm_snapshot* snapshot);
+SM_API void sm_snapshot_destroy(sm_snapshot* snapshot);
 
 /* ---- Bodies ----------------------------------------------------------------------------------------- */
 
@@ -163,68 +165,70 @@ typedef struct sm_body_def {
     double damping_ratio;     /* Modal: damping ratio of every mode [-], >= 0. */
 } sm_body_def;
 
-sm_body_def sm_body_def_default(void);
+SM_API sm_body_def sm_body_def_default(void);
 
 /* Creates a body. Invalid defs (and modal bases that cannot be built) are refused with a message. */
-sm_status sm_world_create_body(sm_world* world, const sm_body_def* def, sm_body* out_body);
+SM_API sm_status sm_world_create_body(sm_world* world, const sm_body_def* def, sm_body* out_body);
 /* Destroys a body; its handle becomes stale (later calls with it return SM_ERROR_INVALID_HANDLE). */
-sm_status sm_world_destroy_body(sm_world* world, sm_body body);
+SM_API sm_status sm_world_destroy_body(sm_world* world, sm_body body);
 /* The body with this name; SM_ERROR_NOT_FOUND if none. */
-sm_status sm_world_find_body(const sm_world* world, const char* name, sm_body* out_body);
+SM_API sm_status sm_world_find_body(const sm_world* world, const char* name, sm_body* out_body);
 /* Number of live bodies. */
-sm_status sm_world_get_body_count(const sm_world* world, size_t* out_count);
+SM_API sm_status sm_world_get_body_count(const sm_world* world, size_t* out_count);
 /* Live bodies in creation (entity-index) order, the order of hashes and scene files. *out_count gets the
  * total. Buffers, here and below: NULL with capacity 0 is a size query (SM_OK); a buffer shorter than the
  * result gets its first `capacity` entries and SM_ERROR_BUFFER_TOO_SMALL. */
-sm_status sm_world_get_bodies(const sm_world* world, sm_body* bodies, size_t capacity, size_t* out_count);
+SM_API sm_status sm_world_get_bodies(const sm_world* world, sm_body* bodies, size_t capacity,
+                                     size_t* out_count);
 /* 1 if body is a live body of world, else 0 (also for a NULL world). Never sets an error. */
-int sm_body_is_valid(const sm_world* world, sm_body body);
+SM_API int sm_body_is_valid(const sm_world* world, sm_body body);
 
 /* The body's name, NUL-terminated, into buffer (capacity bytes). *out_length (may be NULL) gets its
  * length without the NUL. SM_ERROR_BUFFER_TOO_SMALL if it does not fit (buffer then holds a truncated,
  * terminated copy). NULL with capacity 0 is a size query. */
-sm_status sm_body_get_name(const sm_world* world, sm_body body, char* buffer, size_t capacity,
-                           size_t* out_length);
-sm_status sm_body_get_motion(const sm_world* world, sm_body body, sm_motion* out_motion);
+SM_API sm_status sm_body_get_name(const sm_world* world, sm_body body, char* buffer, size_t capacity,
+                                  size_t* out_length);
+SM_API sm_status sm_body_get_motion(const sm_world* world, sm_body body, sm_motion* out_motion);
 /* Mass [kg] from shape and density; reported for static and kinematic bodies too (which move as if
  * infinitely heavy); 0 for planes. */
-sm_status sm_body_get_mass(const sm_world* world, sm_body body, double* out_mass);
+SM_API sm_status sm_body_get_mass(const sm_world* world, sm_body body, double* out_mass);
 /* Shape origin [m] and orientation (body to world), world frame, after the last step. */
-sm_status sm_body_get_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
-                           sm_quat* out_orientation);
+SM_API sm_status sm_body_get_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
+                                  sm_quat* out_orientation);
 /* The pose blended between the last two steps by the interpolation alpha, for rendering. */
-sm_status sm_body_get_interpolated_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
-                                        sm_quat* out_orientation);
+SM_API sm_status sm_body_get_interpolated_pose(const sm_world* world, sm_body body, sm_vec3* out_position,
+                                               sm_quat* out_orientation);
 /* Centre-of-mass velocity [m/s] and angular velocity [rad/s], world frame. */
-sm_status sm_body_get_velocity(const sm_world* world, sm_body body, sm_vec3* out_linear,
-                               sm_vec3* out_angular);
+SM_API sm_status sm_body_get_velocity(const sm_world* world, sm_body body, sm_vec3* out_linear,
+                                      sm_vec3* out_angular);
 
 /* Teleports the shape origin [m] (no interpolation across the jump). */
-sm_status sm_body_set_position(sm_world* world, sm_body body, sm_vec3 position);
+SM_API sm_status sm_body_set_position(sm_world* world, sm_body body, sm_vec3 position);
 /* Turns the body about its shape origin; non-zero, normalised here. */
-sm_status sm_body_set_orientation(sm_world* world, sm_body body, sm_quat orientation);
+SM_API sm_status sm_body_set_orientation(sm_world* world, sm_body body, sm_quat orientation);
 /* Sets velocities [m/s], [rad/s], world frame; static bodies keep zero. */
-sm_status sm_body_set_velocity(sm_world* world, sm_body body, sm_vec3 linear, sm_vec3 angular);
+SM_API sm_status sm_body_set_velocity(sm_world* world, sm_body body, sm_vec3 linear, sm_vec3 angular);
 
 /* Forces last for the next step only; non-dynamic bodies ignore them (SM_OK). */
 /* Force [N] at a world point [m]: also a torque about the centre of mass, and on a modal body a load
  * on its modes. */
-sm_status sm_body_apply_force(sm_world* world, sm_body body, sm_vec3 force, sm_vec3 point);
+SM_API sm_status sm_body_apply_force(sm_world* world, sm_body body, sm_vec3 force, sm_vec3 point);
 /* Force [N] through the centre of mass, like gravity (does not deform a modal body). */
-sm_status sm_body_apply_force_at_center(sm_world* world, sm_body body, sm_vec3 force);
-sm_status sm_body_apply_torque(sm_world* world, sm_body body, sm_vec3 torque); /* [N m], world frame. */
+SM_API sm_status sm_body_apply_force_at_center(sm_world* world, sm_body body, sm_vec3 force);
+SM_API sm_status sm_body_apply_torque(sm_world* world, sm_body body,
+                                      sm_vec3 torque); /* [N m], world frame. */
 /* Impulse [N s] at a world point [m]: changes velocities at once (and a modal body's mode rates). */
-sm_status sm_body_apply_impulse(sm_world* world, sm_body body, sm_vec3 impulse, sm_vec3 point);
+SM_API sm_status sm_body_apply_impulse(sm_world* world, sm_body body, sm_vec3 impulse, sm_vec3 point);
 /* Angular impulse [N m s], world frame. */
-sm_status sm_body_apply_angular_impulse(sm_world* world, sm_body body, sm_vec3 impulse);
+SM_API sm_status sm_body_apply_angular_impulse(sm_world* world, sm_body body, sm_vec3 impulse);
 
 /* ---- Deformation ------------------------------------------------------------------------------------ */
 
 /* Where material points are now [m], world frame: for each rest point (shape frame [m], the frame of
  * sm_body_def's radii) the rigid pose plus the modal displacement; rigid bodies just the pose.
  * rest_points and out_points hold count entries each (may be NULL when count is 0). */
-sm_status sm_body_get_deformed_points(const sm_world* world, sm_body body, const sm_vec3* rest_points,
-                                      size_t count, sm_vec3* out_points);
+SM_API sm_status sm_body_get_deformed_points(const sm_world* world, sm_body body, const sm_vec3* rest_points,
+                                             size_t count, sm_vec3* out_points);
 /* The body's surface as a triangle mesh, deformed and in world frame [m]: `resolution` segments around the
  * equator (clamped to [4, 2048]), three indices per triangle, counter-clockwise seen from outside.
  * *out_vertex_count and *out_index_count get the sizes; both buffers NULL with capacity 0 is a size
@@ -232,13 +236,13 @@ sm_status sm_body_get_deformed_points(const sm_world* world, sm_body body, const
  * gives the same sizes and indices every call (the rest mesh is deformed, not re-meshed). Planes have
  * no mesh (0, 0). The first call per body and resolution tessellates and caches the rest mesh (memory
  * until the body or world is destroyed); later calls only deform it, cost linear in the vertex count. */
-sm_status sm_body_get_mesh(const sm_world* world, sm_body body, int resolution, sm_vec3* positions,
-                           size_t vertex_capacity, uint32_t* indices, size_t index_capacity,
-                           size_t* out_vertex_count, size_t* out_index_count);
+SM_API sm_status sm_body_get_mesh(const sm_world* world, sm_body body, int resolution, sm_vec3* positions,
+                                  size_t vertex_capacity, uint32_t* indices, size_t index_capacity,
+                                  size_t* out_vertex_count, size_t* out_index_count);
 /* A modal body's amplitudes q [sqrt(kg) m] (0 entries for a rigid body). Buffer rules as
  * sm_world_get_bodies. */
-sm_status sm_body_get_modal_amplitudes(const sm_world* world, sm_body body, double* amplitudes,
-                                       size_t capacity, size_t* out_count);
+SM_API sm_status sm_body_get_modal_amplitudes(const sm_world* world, sm_body body, double* amplitudes,
+                                              size_t capacity, size_t* out_count);
 
 #ifdef __cplusplus
 } /* extern "C" */

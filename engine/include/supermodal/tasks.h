@@ -8,6 +8,8 @@
 // they run on, cannot change a result: any task system gives the same bits as one thread.
 #pragma once
 
+#include "supermodal/api.h"
+
 #include <memory>
 
 namespace supermodal
@@ -17,7 +19,7 @@ namespace supermodal
 using TaskFn = void (*)(void* context, int part);
 
 /// A scheduler the world hands its loops to. Implement it over the host's job system.
-class TaskSystem
+class SM_API TaskSystem
 {
   public:
     virtual ~TaskSystem() = default;
@@ -32,6 +34,6 @@ class TaskSystem
 
 /// The built-in pool: the calling thread plus thread_count − 1 workers [-], thread_count in [1, 64];
 /// part p runs on thread p mod thread_count.
-[[nodiscard]] std::shared_ptr<TaskSystem> make_thread_pool(int thread_count);
+[[nodiscard]] SM_API std::shared_ptr<TaskSystem> make_thread_pool(int thread_count);
 
 } // namespace supermodal

@@ -3,6 +3,7 @@
 // everything about one body is a free function in body.h.
 #pragma once
 
+#include "supermodal/api.h"
 #include "supermodal/contact.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
@@ -47,11 +48,11 @@ struct WorldDef {
 };
 
 /// The documented starting point: dt = 2 ms, one substep, Earth gravity along −Y.
-[[nodiscard]] WorldDef default_world_def();
+[[nodiscard]] SM_API WorldDef default_world_def();
 
 /// Checks dt > 0 and finite, substep_count in [1, 1000], finite gravity, max_steps_per_advance ≥ 1,
 /// constraint_iterations in [1, 100], thread_count in [1, 64].
-[[nodiscard]] Status validate(const WorldDef& def);
+[[nodiscard]] SM_API Status validate(const WorldDef& def);
 
 /// The named stages of one step, in the order step() runs them.
 enum class Stage : uint8_t {
@@ -67,7 +68,7 @@ enum class Stage : uint8_t {
 };
 
 /// Human-readable stage name ("integrate_forces").
-[[nodiscard]] std::string_view stage_name(Stage stage);
+[[nodiscard]] SM_API std::string_view stage_name(Stage stage);
 
 /// Time spent per stage, summed over the last step's substeps [ms].
 struct StepProfile {
@@ -92,7 +93,7 @@ struct StepWarnings {
 /// A saved copy of a world's dynamic state: opaque bytes that begin with a layout version. Restore it
 /// into the same world (or one built the same way, with the same build of the engine); keep the bytes
 /// in a file or send them elsewhere and make a Snapshot of them again with from_bytes().
-class Snapshot
+class SM_API Snapshot
 {
   public:
     Snapshot() = default;
@@ -114,7 +115,7 @@ class Snapshot
 using StepListenerFn = void (*)(World& world, void* user_data);
 
 /// A physics world: bodies, settings, the fixed-step clock. Several worlds may live side by side.
-class World
+class SM_API World
 {
   public:
     explicit World(const WorldDef& def = default_world_def());
@@ -160,6 +161,6 @@ class World
 };
 
 /// Sets (or with null, removes) the world's step listener; user_data is passed back to it.
-void world_set_step_listener(World& world, StepListenerFn fn, void* user_data);
+SM_API void world_set_step_listener(World& world, StepListenerFn fn, void* user_data);
 
 } // namespace supermodal
