@@ -5,7 +5,9 @@ Each LABEL=BINARY is one build of bench/threads_bench.cpp (e.g. before and after
 Release on the same machine, run one after the other on a quiet machine). Rows: label, scene, threads,
 median over 3 repetitions of wall ms/step and CPU ms/step, speed-up against 1 thread of that build,
 and the low 32 bits of the state hash (equal for 1 and 2 threads: a determinism check).
-Usage: bench/threads_report.py OUT.csv LABEL=BINARY [LABEL=BINARY ...] -- SCENE.json [SCENE.json ...]
+       bench/threads_report.py --plot OUT.csv   (the plot again from the CSV)
+Usage: bench/threads_report.py OUT.csv LABEL[:COMMIT]=BINARY [...] -- SCENE.json [SCENE.json ...]
+(COMMIT: the commit the binary was built from; default the checkout's HEAD).
 """
 import csv
 import datetime
@@ -54,10 +56,12 @@ def main():
     date = datetime.date.today().isoformat()
     for build in builds:
         label, binary = build.split("=", 1)
+        label, _, built_from = label.partition(":")
         rows = run(binary, scenes)
         for (scene, threads), (ms, cpu, hsh, bodies) in sorted(rows.items()):
             one = rows[(scene, 1)][0]
-            lines.append([date, f"{platform.node()} ({os.cpu_count()} cores)", cpu_name(), commit, label, scene,
+            lines.append([date, f"{platform.node()} ({os.cpu_count()} cores)", cpu_name(), built_from or commit,
+                          label, scene,
                           bodies, threads, f"{ms:.3f}", f"{cpu:.3f}", f"{one / ms:.3f}", hsh])
     with open(out_csv, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
@@ -68,35 +72,46 @@ def main():
 
 
 def plot(out_csv, lines):
-    """Bars of wall ms/step per scene, build and thread count (gnuplot, if installed)."""
+    """Bars of the 2-thread speed-up per scene and build (gnuplot, if installed)."""
     if not shutil.which("gnuplot"):
         print("gnuplot not found: no plot")
         return
     data = out_csv[:-4] + ".dat"
     with open(data, "w", encoding="utf-8") as f:
-        f.write("# group ms_1_thread ms_2_threads\n")
-        groups = {}
-        for row in lines:
-            groups.setdefault((row[5], row[4]), {})[row[7]] = row[8]
-        for (scene, label), by in groups.items():
-            f.write(f'"{scene.replace(".json", "")}\\n{label}" {by.get(1, "nan")} {by.get(2, "nan")}\n')
+        f.write("# scene build speedup ms_1 ms_2\n")
+        ms = {(r[5], r[4], int(r[7])): r[8] for r in lines}
+        for r in lines:
+            if int(r[7]) == 2:
+                label = f"{r[5].replace('.json', '')} {r[4]}\\n{ms[(r[5], r[4], 1)]} -> {r[8]} ms"
+                f.write(f'"{label}" {r[10]}\n')
     png = out_csv[:-4] + ".png"
     script = f"""
-set terminal pngcairo size 900,480 font "Helvetica,11"
+set terminal pngcairo size 900,480 font "Helvetica,11" noenhanced
 set output "{png}"
 set style data histograms
-set style histogram clustered gap 1
 set style fill solid 0.8 border -1
-set ylabel "wall time per step [ms]"
-set title "Step time on 1 and 2 threads (threads_bench, Release)"
-set key top left
+set boxwidth 0.6
+set yrange [0:2.2]
+set ylabel "speed-up, 2 threads against 1 [-]"
+set title "Wall time per step, 1 and 2 threads (threads_bench, Release, 2-core VM)"
 set grid ytics
-plot "{data}" using 2:xtic(1) title "1 thread", "" using 3 title "2 threads"
+set bmargin 4
+unset key
+plot "{data}" using 2:xtic(1) lc rgb "#3d7cc9", 1 with lines dt 2 lc rgb "#888888"
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
     os.remove(data)
     print(png)
 
 
+def replot(out_csv):
+    """The plot again from a CSV this script wrote."""
+    with open(out_csv, encoding="utf-8") as f:
+        plot(out_csv, list(csv.reader(f))[1:])
+
+
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
+        replot(sys.argv[2])
+    else:
+        main()
