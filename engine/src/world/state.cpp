@@ -20,27 +20,15 @@ constexpr uint64_t k_fnv_prime = 1099511628211ull;
 constexpr char k_magic[4] = {'S', 'M', 'S', 'S'};
 constexpr size_t k_header_bytes = 8;
 
-// The hash: FNV-1a over the Hashed fields' bytes, in visit order.
-struct Hasher {
-    uint64_t h = k_fnv_offset;
-    void bytes(const void* data, size_t n)
-    {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) {
-            h ^= p[i];
-            h *= k_fnv_prime;
-        }
-    }
-    void real(const double& x, Field f)
-    {
-        if (f == Field::Hashed)
-            bytes(&x, sizeof x);
-    }
+// The hash and the snapshot writer read the state alike, one 8-byte word per field; only where the word
+// goes differs (the Sink).
+template <class Sink> struct Emitter {
+    Sink sink;
+    void real(const double& x, Field f) { sink.word(&x, f); }
     template <class T> void integer(const T& x, Field f)
     {
         const auto u = static_cast<uint64_t>(x);
-        if (f == Field::Hashed)
-            bytes(&u, sizeof u);
+        sink.word(&u, f);
     }
     void flag(const bool& b, Field f) { real(b ? 1.0 : 0.0, f); }
     bool check(bool, const char*) { return true; }
@@ -51,26 +39,28 @@ struct Hasher {
     }
 };
 
-// The snapshot writer: every field as one 8-byte word.
-struct Writer {
+// The hash: FNV-1a over the Hashed fields' bytes, in visit order.
+struct FnvSink {
+    uint64_t h = k_fnv_offset;
+    void word(const void* data, Field f)
+    {
+        if (f != Field::Hashed)
+            return;
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < 8; ++i) {
+            h ^= p[i];
+            h *= k_fnv_prime;
+        }
+    }
+};
+
+// The snapshot: every field.
+struct ByteSink {
     std::vector<std::byte>& out;
-    void word(const void* p)
+    void word(const void* data, Field)
     {
-        const auto* b = static_cast<const std::byte*>(p);
+        const auto* b = static_cast<const std::byte*>(data);
         out.insert(out.end(), b, b + 8);
-    }
-    void real(const double& x, Field) { word(&x); }
-    template <class T> void integer(const T& x, Field)
-    {
-        const auto u = static_cast<uint64_t>(x);
-        word(&u);
-    }
-    void flag(const bool& b, Field f) { real(b ? 1.0 : 0.0, f); }
-    bool check(bool, const char*) { return true; }
-    template <class C> const C& sequence(const C& c, Field f)
-    {
-        integer(c.size(), f);
-        return c;
     }
 };
 
@@ -155,9 +145,9 @@ uint32_t Snapshot::layout_version() const
 
 uint64_t World::state_hash() const
 {
-    Hasher h;
-    visit_state(h, std::as_const(*m_impl));
-    return h.h;
+    Emitter<FnvSink> hasher{};
+    visit_state(hasher, std::as_const(*m_impl));
+    return hasher.sink.h;
 }
 
 Snapshot World::snapshot() const
@@ -166,7 +156,7 @@ Snapshot World::snapshot() const
     s.m_bytes.resize(k_header_bytes);
     std::memcpy(s.m_bytes.data(), k_magic, 4);
     std::memcpy(s.m_bytes.data() + 4, &k_snapshot_layout_version, 4);
-    Writer writer{s.m_bytes};
+    Emitter<ByteSink> writer{{s.m_bytes}};
     visit_state(writer, std::as_const(*m_impl));
     return s;
 }

@@ -2,7 +2,7 @@
 #include "supermodal/world.h"
 
 #include "core/assert.h"
-#include "core/thread_pool.h"
+#include "supermodal/tasks.h"
 #include "world/constraint_system.h"
 #include "world/contact_system.h"
 #include "world/integrate.h"
