@@ -24,7 +24,7 @@ constexpr size_t k_max_bodies = 256;
 // A modal basis on a 128³ lattice is a legitimate, minutes-long build: valid input, not a loader bug,
 // but it would trip the 10 s per-input timeout. Larger models are parsed and checked, not built. The
 // cap counts the whole scene's modal cells: one 8×2×4 board with 24 modes took 5.6 s alone (2.1 s at 8
-// modes, 32×1×2), and session 9's long run timed out on such an input at 238,570 inputs while builds
+// modes, 32×1×2), and a long run timed out on such an input at 238,570 inputs while builds
 // ran beside it; 32 cells (the ball_on_board sample's lattice) take ≤ 2.3 s at 24 modes.
 constexpr long k_max_modal_cells = 32;
 constexpr int k_max_modes = 24;
@@ -87,7 +87,7 @@ Verdict run_scene_case(std::string_view text)
     if (per_step > k_body_substep_budget)
         return Verdict::Skipped;
     // The tunnelling rule may add up to max_auto_substeps per step (a 2 m ball at dt = 0.4 s on the modal
-    // board took 10 s for 8 steps under the fuzz build, session 9): the budget counts the substeps taken.
+    // board took 10 s for 8 steps under the fuzz build): the budget counts the substeps taken.
     long used = 0;
     for (int i = 0; i < k_steps && (i == 0 || used + per_step <= k_body_substep_budget); ++i) {
         const uint64_t extra_before = world->warnings().speculative_substeps;

@@ -246,7 +246,7 @@ TEST(Superquadric, ClosestPointOfSphereAndEllipsoid)
     constexpr double k_round_off = 1e-12;
     // Newton stops once t²/(|r| + r·n) ≤ 1e-13 × size (t the tangential part of r = p − x): the
     // distance is then right to that, the point only to t ≤ √(2·|r|·1e-13·size) = √(2·3·2e-13) ≈ 1.1e-6
-    // (measured: 6e-10 with session 9's ellipsoid support, 0 before), the normal to t / radius.
+    // (measured: 6e-10 with the closed-form ellipsoid support, 0 before), the normal to t / radius.
     constexpr double k_point = 1.1e-6, k_normal = k_point / 2.0;
     const sm::ShapeDef sphere = superquadric({2, 2, 2}, 1, 1);
     const sm::SurfaceProjection r = sm::closest_point(sphere, {3, 4, 0});

@@ -59,7 +59,7 @@ enum class Stage : uint8_t {
     Broadphase,         ///< Once per step: pairs from boxes swept over the step; picks the substeps.
     IntegrateForces,    ///< Gravity and applied forces into velocities.
     Narrowphase,        ///< Contact points per substep.
-    PenaltyForces,      ///< Contact (and, with issue #7, constraint) springs into velocities.
+    PenaltyForces,      ///< Contact, then constraint springs into velocities.
     ModalUpdate,        ///< Modal amplitudes (modal issue).
     IntegratePositions, ///< Velocities into poses; implicit gyroscopic term.
     UpdateSurfaces,     ///< Derived data: deformed surfaces, world bounds.

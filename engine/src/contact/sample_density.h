@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Contact sample density from an error budget (scene "dynamics": "auto", issue #9). A sampled body meets
+// Contact sample density from an error budget (scene "dynamics": "auto"). A sampled body meets
 // a surface only at its samples, so where the true surface bulges between them it sinks deeper than it
 // should, by the gap between the samples' hull and the surface. Pressed on by a plane from direction n
 // that gap is (how far the surface reaches along n) − (how far the samples reach along n): the error in

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The lattice of an auto body (scene "dynamics": "auto" with no "lattice", issue #9). A lattice's modes
+// The lattice of an auto body (scene "dynamics": "auto" with no "lattice"). A lattice's modes
 // are stiffer than the body's (too few cells to bend freely), so its frequencies fall as it is refined;
 // how much they still move from one lattice to the next twice as fine estimates what the coarser one
 // leaves out. An auto body takes the default lattice, refined by doubling until its kept modes'

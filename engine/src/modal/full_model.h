@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The full model of a modal body's lattice, for measuring the modal path against (issue #6 item 6,
+// The full model of a modal body's lattice, for measuring the modal path against (
 // docs/modal.md "Full model and the modal trade"): every degree of freedom, integrated implicitly.
 //
 // Integrator: Newmark average acceleration (γ = 1/2, β = 1/4). It is unconditionally stable, second
