@@ -28,15 +28,18 @@ struct Pinned {
 // points instead of the value at their centroid (penalty.cpp), so the board's spring moves slightly.
 // Ball on board (exact modal integrator under contact): the board's modes with ωh < 2 take the
 // contact load as a kick before the exact flow instead of held (modal_world.cpp), so they ring differently.
-// All four, 2026-11-26 (session 7): the contact anchors hash the held spring per point area and the
+// All four, 2026-11-26: the contact anchors hash the held spring per point area and the
 // dissipated-energy credit; rigid pairs hold their spring while touching (penalty.cpp hold_stiffness),
 // which changes demo, chair and pile; ball on board by the two new fields only (its contacts all
 // involve the modal board, whose pairs do not hold their spring).
+// Chair and pile, 2026-12-02: the contact anchors also hash the soft solver's loads (three fields,
+// zero on the penalty path): the hashes of the samples that hold anchors at the pinned step change by
+// those words alone; demo and ball on board hold none then, and keep theirs.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x7fbf6aba2a63ecdeULL},
-    {"chair_with_dummy", 500, 0x645e5e1a2dcd3e5dULL},
+    {"chair_with_dummy", 500, 0x3effae460663bf7dULL},
     {"ball_on_board", 400, 0xa959e468cdbd6b50ULL},
-    {"pile", 240, 0xc93e26c3a5901c78ULL},
+    {"pile", 240, 0x9ca77da8c4c5bc78ULL},
 };
 
 class PinnedHash : public testing::TestWithParam<Pinned>

@@ -245,6 +245,33 @@ TEST(SceneLoaderErrors, UnknownChoiceSuggestsTheClosest)
                          "expected \"superquadric\", \"plane\" or \"hyperquadric\", found \"sphere\""));
 }
 
+TEST(SceneLoader, ReadsTheContactSolverAndItsSettings)
+{
+    const auto scene = sm::parse_scene(R"({"settings": {"contact": {"solver": "soft", "soft": {
+        "frequency": 45, "damping_ratio": 2, "push_out_speed": 0.5, "restitution_speed": 0.2,
+        "iterations": 12}}}})");
+    ASSERT_TRUE(scene) << scene.error().message();
+    const sm::ContactDef& c = scene->world.contact;
+    EXPECT_EQ(c.solver, sm::ContactSolver::Soft);
+    EXPECT_EQ(c.soft.frequency_hz, 45.0);
+    EXPECT_EQ(c.soft.damping_ratio, 2.0);
+    EXPECT_EQ(c.soft.push_out_speed, 0.5);
+    EXPECT_EQ(c.soft.restitution_speed, 0.2);
+    EXPECT_EQ(c.soft.iterations, 12);
+}
+
+TEST(SceneLoaderErrors, ContactSolverSettingsNameTheirPointer)
+{
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"solver": "sofft"}}})", "/settings/contact/solver",
+                         "did you mean \"soft\"?"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"push_out_speed": 0}}}})",
+                         "/settings/contact/soft/push_out_speed", "expected a number > 0, found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"iterations": 0}}}})",
+                         "/settings/contact/soft/iterations", "found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"frequenzy": 3}}}})",
+                         "/settings/contact/soft/frequenzy", "did you mean \"frequency\"?"));
+}
+
 TEST(SceneLoaderErrors, UnknownMaterialListsTheMaterials)
 {
     EXPECT_TRUE(fails_at(one_body(R"("material": "oak",)"), "/bodies/0/material",
@@ -374,8 +401,8 @@ TEST(SceneLoader, ConstraintsBuildIntoTheWorld)
 TEST(SceneLoaderErrors, DynamicsErrors)
 {
     // Modal scenes themselves are tested in modal_scene_test.cpp.
-    EXPECT_TRUE(fails_at(R"({"settings": {"accuracy": {"displacement": 0}}})", "/settings/accuracy/displacement",
-                         "expected a number > 0, found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"accuracy": {"displacement": 0}}})",
+                         "/settings/accuracy/displacement", "expected a number > 0, found 0"));
     EXPECT_TRUE(fails_at(R"({"settings": {"accuracy": {"force": 1}}})", "/settings/accuracy/force", "force"));
     EXPECT_TRUE(fails_at(one_body(R"("dynamics": {"type": "rigid", "modes": 0},)"),
                          "/bodies/0/dynamics/modes", "expected an integer"));

@@ -223,7 +223,9 @@ std::string every_field_scene()
     return R"({
   "settings": { "dt": 0.0015, "substeps": 3, "gravity": [0.1, -9.80665, 0.2], "duration": 0.7,
                 "max_steps_per_advance": 5, "constraint_iterations": 7,
-                "contact": { "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
+                "contact": { "solver": "soft", "soft": { "frequency": 47.5, "damping_ratio": 3.25,
+                             "push_out_speed": 1.5, "restitution_speed": 0.75, "iterations": 9 },
+                             "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
                              "max_samples_per_body": 700 },
                 "threads": 2 },
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },

@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Penalty contact: settings, and what the host can read back after a step.
+// Contact: settings, and what the host can read back after a step.
 //
-// A touching pair pushes apart with a spring–damper whose stiffness comes from a natural frequency and
-// the pair's effective mass (k = m_eff·(2πf)², c = 2ζ·m_eff·2πf), so one setting is stable for any mass
-// ratio. Friction is a tangential spring anchored where the contact started to stick (Cundall–Strack),
-// clamped to the Coulomb cone; the anchors are part of the world's state (hashed, snapshotted).
+// Two solvers. Soft (the default): each contact point is a spring–damper given by a frequency and a
+// damping ratio, solved implicitly as a velocity constraint together with the joints (warm started,
+// relaxed after the positions move), so its stability does not depend on the step; friction is a
+// velocity constraint bounded by the Coulomb cone. Penalty (the paper's): an explicit spring–damper
+// force whose stiffness comes from a natural frequency and the pair's effective mass
+// (k = m_eff·(2πf)², c = 2ζ·m_eff·2πf), stable while 2πf·h stays small; friction is a tangential
+// spring anchored where the contact started to stick (Cundall–Strack), clamped to the Coulomb cone.
+// Either way the per-pair memory (anchors, last loads) is part of the world's state.
 #pragma once
 
 #include "supermodal/api.h"
@@ -33,9 +37,31 @@ enum class ContactStiffness : uint8_t {
                ///< curvature radii; clamped to the stability cap (1/(10·h)) on its tangent stiffness.
 };
 
+/// How contact forces are found.
+enum class ContactSolver : uint8_t {
+    Soft,    ///< Implicit soft constraints, solved with the joints: stable at any step (default).
+    Penalty, ///< Explicit penalty springs (the paper's): needs 2πf·h small, so small steps or substeps.
+};
+
+/// Settings of the soft solver. The spring of a point acts on the point's effective mass, so one
+/// frequency behaves alike for any masses; a static partner doubles it (the point's mass is the
+/// moving body's alone, so it would otherwise sag twice as far).
+struct SoftContactDef {
+    double frequency_hz = 0.0;      ///< Contact spring frequency [Hz]; 0 = half the substep rate
+                                    ///< (1/(2·h)). Higher sinks less under load; the solve stays stable.
+    double damping_ratio = 10.0;    ///< [-]: heavily damped, so a spring pushes out without bouncing.
+    double push_out_speed = 3.0;    ///< Fastest separation the spring may cause [m/s].
+    double restitution_speed = 1.0; ///< Approach speed [m/s] below which a contact does not bounce.
+    int iterations = 10; ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
+                         ///< joints join them (max with WorldDef::constraint_iterations), and as many
+                         ///< relax passes follow the position update. More holds taller stacks.
+};
+
 /// World-wide contact settings. Start from the defaults and change what differs.
 struct ContactDef {
     bool enabled = true;
+    ContactSolver solver = ContactSolver::Penalty;
+    SoftContactDef soft{}; ///< The soft solver's settings (solver == Soft).
     ContactPath path = ContactPath::Auto;
     double frequency_hz = 0.0;       ///< Penalty natural frequency [Hz]; 0 = the stability cap 1/(10·h)
                                      ///< with h the substep. Higher is stiffer (less penetration) but

@@ -30,7 +30,7 @@ struct WorldDef {
     Vec3 gravity{0.0, -9.81, 0.0};  ///< [m/s²], world frame (Y-up).
     int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
                                     ///< dropping the rest of the backlog so a slow frame cannot spiral.
-    ContactDef contact{};           ///< Penalty contact settings.
+    ContactDef contact{};           ///< Contact settings (solver, narrowphase).
     int constraint_iterations = 4;  ///< Gauss–Seidel passes over the constraint springs per substep [-],
                                     ///< in [1, 100]; more lets chains of unequal masses hold tighter.
     int thread_count = 1;           ///< Threads of the built-in pool [-], in [1, 64]: the caller's thread

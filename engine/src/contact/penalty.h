@@ -25,6 +25,11 @@ struct PairAnchor {
     Vec3 roll{};            ///< Rolling spring angle [rad], world, in the contact plane (rotation vector).
     double stiffness = 0.0; ///< Normal spring per point area held while touching [N/m³] (0: Hertz).
     double credit = 0.0;    ///< Energy dissipated by the contact, not yet spent on stiffening it [J].
+    // The soft solver's memory: the pair's loads of its last substep, which start the next solve
+    // (warm starting). Kept as forces, not impulses, so a change of substep length scales them.
+    double normal_load = 0.0; ///< Σ normal force [N].
+    Vec3 friction_load{};     ///< Friction force on a [N], world.
+    Vec3 roll_load{};         ///< Rolling-resistance torque on a [N·m], world.
 };
 
 /// Memo of damping ratios per restitution (a 50-step bisection): a pure function, so hits and misses

@@ -37,9 +37,14 @@ const std::vector<std::string_view> k_settings_keys = {
     "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
     "contact", "threads",  "accuracy"};
 const std::vector<std::string_view> k_accuracy_keys = {"displacement"};
-const std::vector<std::string_view> k_contact_keys = {"path", "stiffness", "sample_spacing",
-                                                      "max_samples_per_body"};
+const std::vector<std::string_view> k_contact_keys = {"solver",    "soft",           "path",
+                                                      "stiffness", "sample_spacing", "max_samples_per_body"};
 const std::vector<std::string_view> k_contact_stiffness = {"frequency", "material"};
+// In ContactSolver order.
+const std::vector<std::string_view> k_contact_solvers = {"soft", "penalty"};
+static_assert(static_cast<int>(ContactSolver::Penalty) == 1);
+const std::vector<std::string_view> k_soft_keys = {"frequency", "damping_ratio", "push_out_speed",
+                                                   "restitution_speed", "iterations"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
@@ -52,6 +57,45 @@ constexpr double k_max_substeps = 1000.0;
 constexpr double k_max_threads = 64.0;
 // Read size for scene files [bytes].
 constexpr size_t k_read_chunk = size_t{1} << 16;
+
+// One of `names` at key `key` of an object into an enum (by index).
+template <class E>
+void field_choice(Reader& r, const Json& object, const std::string& where, const char* key,
+                  const std::vector<std::string_view>& names, E& out)
+{
+    if (!r.ok())
+        return;
+    if (const Json* value = r.member(object, key)) {
+        size_t index = 0;
+        r.read_choice(*value, where + "/" + key, names, index);
+        out = static_cast<E>(index);
+    }
+}
+
+void read_soft_contact(Reader& r, const Json& soft, const std::string& where, SoftContactDef& out)
+{
+    if (!r.check_object(soft, where, k_soft_keys))
+        return;
+    // 0 Hz is the automatic frequency; up to 1 MHz, past which a spring is a unit mistake.
+    r.field_number(soft, where, "frequency", scene_io::closed(0.0, 1e6), out.frequency_hz);
+    r.field_number(soft, where, "damping_ratio", scene_io::closed(0.0, 1e3), out.damping_ratio);
+    r.field_number(soft, where, "push_out_speed", scene_io::above(0.0), out.push_out_speed);
+    r.field_number(soft, where, "restitution_speed", scene_io::at_least(0.0), out.restitution_speed);
+    r.field_int(soft, where, "iterations", scene_io::closed(1.0, 100.0), out.iterations);
+}
+
+void read_contact(Reader& r, const Json& contact, const std::string& where, ContactDef& out)
+{
+    if (!r.check_object(contact, where, k_contact_keys))
+        return;
+    field_choice(r, contact, where, "solver", k_contact_solvers, out.solver);
+    field_choice(r, contact, where, "path", k_contact_paths, out.path);
+    field_choice(r, contact, where, "stiffness", k_contact_stiffness, out.stiffness);
+    if (const Json* soft = r.member(contact, "soft"))
+        read_soft_contact(r, *soft, where + "/soft", out.soft);
+    r.field_number(contact, where, "sample_spacing", scene_io::at_least(0.0), out.sample_spacing);
+    r.field_int(contact, where, "max_samples_per_body", scene_io::closed(1.0, 1e6), out.max_samples_per_body);
+}
 
 void read_settings(Reader& r, const Json& root, Scene& out_scene)
 {
@@ -69,27 +113,8 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
                 world.constraint_iterations);
     r.field_int(*settings, where, "max_steps_per_advance", scene_io::at_least(1.0),
                 world.max_steps_per_advance);
-    if (const Json* contact = r.member(*settings, "contact")) {
-        const std::string contact_where = where + "/contact";
-        if (r.check_object(*contact, contact_where, k_contact_keys))
-            if (const Json* path = r.member(*contact, "path")) {
-                size_t index = 0;
-                r.read_choice(*path, contact_where + "/path", k_contact_paths, index);
-                world.contact.path = static_cast<ContactPath>(index);
-            }
-        if (r.ok() && contact->is_object())
-            if (const Json* stiffness = r.member(*contact, "stiffness")) {
-                size_t index = 0;
-                r.read_choice(*stiffness, contact_where + "/stiffness", k_contact_stiffness, index);
-                world.contact.stiffness = static_cast<ContactStiffness>(index);
-            }
-        if (r.ok() && contact->is_object()) {
-            r.field_number(*contact, contact_where, "sample_spacing", scene_io::at_least(0.0),
-                           world.contact.sample_spacing);
-            r.field_int(*contact, contact_where, "max_samples_per_body", scene_io::closed(1.0, 1e6),
-                        world.contact.max_samples_per_body);
-        }
-    }
+    if (const Json* contact = r.member(*settings, "contact"))
+        read_contact(r, *contact, where + "/contact", world.contact);
     r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
     if (const Json* accuracy = r.member(*settings, "accuracy"))
         if (r.check_object(*accuracy, where + "/accuracy", k_accuracy_keys))

@@ -27,6 +27,7 @@ const char* const k_dynamics_names[] = {"rigid", "modal", "auto", "full"};
 const char* const k_integrator_names[] = {"exact", "central_difference"};
 const char* const k_contact_paths[] = {"auto", "sampling", "support_map"};
 const char* const k_contact_stiffness[] = {"frequency", "material"};
+const char* const k_contact_solvers[] = {"soft", "penalty"};
 const char* const k_constraint_types[] = {"point", "distance", "weld"};
 
 /// Lines at most this long stay on one line in the output [characters].
@@ -47,7 +48,15 @@ Json settings_json(const Scene& scene)
     s["duration"] = scene.duration;
     s["max_steps_per_advance"] = w.max_steps_per_advance;
     s["constraint_iterations"] = w.constraint_iterations;
-    s["contact"] = {{"path", k_contact_paths[static_cast<size_t>(w.contact.path)]},
+    const SoftContactDef& soft = w.contact.soft;
+    s["contact"] = {{"solver", k_contact_solvers[static_cast<size_t>(w.contact.solver)]},
+                    {"soft",
+                     {{"frequency", soft.frequency_hz},
+                      {"damping_ratio", soft.damping_ratio},
+                      {"push_out_speed", soft.push_out_speed},
+                      {"restitution_speed", soft.restitution_speed},
+                      {"iterations", soft.iterations}}},
+                    {"path", k_contact_paths[static_cast<size_t>(w.contact.path)]},
                     {"stiffness", k_contact_stiffness[static_cast<size_t>(w.contact.stiffness)]},
                     {"sample_spacing", w.contact.sample_spacing},
                     {"max_samples_per_body", w.contact.max_samples_per_body}};

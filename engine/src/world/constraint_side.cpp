@@ -70,6 +70,29 @@ Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     return s;
 }
 
+Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h)
+{
+    Side s;
+    s.point = x;
+    s.m = &bodies.get<BodyModel>(e);
+    s.p = &bodies.get<Pose>(e);
+    s.r = x - s.p->position;
+    if (ModalBody* b = bodies.find<ModalBody>(e)) {
+        // x carries the displacement already; φ at the displaced point differs from φ at the rest
+        // point only to second order in the deformation.
+        const Vec3 local = inv_rotate(s.p->orientation, s.r) + s.m->mass.center_of_mass;
+        modal_anchor(b, s.p->orientation, local, h, false, s.modal);
+    }
+    if (s.m->motion == MotionType::Dynamic) {
+        s.v = &bodies.get<Velocity>(e);
+        s.inv_mass = s.m->inv_mass;
+        s.inv_inertia = world_inv_inertia(*s.m, *s.p);
+    } else if (s.m->motion == MotionType::Kinematic) {
+        s.v = &bodies.get<Velocity>(e);
+    }
+    return s;
+}
+
 Quat anchor_orientation(const Side& s)
 {
     if (s.p == nullptr)

@@ -23,6 +23,9 @@ struct Side {
 /// The side of body e (null: the world, `local` a world point) at shape-frame anchor `local`.
 /// `with_rotation`: the modes' rotation at the anchor is needed too (welds).
 [[nodiscard]] Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation);
+/// The side of body e at a contact point x [m], world, already on the (deformed) surface: as make_side,
+/// with the modes evaluated at x's rest position and no rotation.
+[[nodiscard]] Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h);
 /// Orientation of the material at the anchor: the body's, turned by the modal rotation there.
 [[nodiscard]] Quat anchor_orientation(const Side& s);
 /// Velocity of the anchor point [m/s], modes included.

@@ -6,6 +6,7 @@
 // a light part between heavy ones cannot blow up; a few Gauss–Seidel passes over all constraints let
 // chains carry loads (a heavy part hanging below a light one) without the light part's mass limiting
 // the stiffness, as an explicit penalty spring would.
+#include "dynamics/soft_constraint.h"
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
 #include "world/integrate.h"
@@ -51,24 +52,10 @@ Quat orientation_of(const Side& s)
     return s.p == nullptr ? Quat{} : s.p->orientation;
 }
 
-// Backward-Euler spring–damper coefficients for natural frequency ω and damping ratio ζ over h:
-// the impulse is −m_eff·(mass_scale·(Ċ + bias_rate·C)) − impulse_scale·(impulse so far).
 // Joint limits start acting this far before the limit [rad] (speculatively, see solve_angular).
 constexpr double k_limit_margin = 0.1;
 
-struct Soft {
-    double bias_rate = 0.0;     ///< [1/s].
-    double mass_scale = 0.0;    ///< [-].
-    double impulse_scale = 0.0; ///< [-].
-};
-
-Soft make_soft(double omega, double zeta, double h)
-{
-    const double a1 = 2.0 * zeta + h * omega;
-    const double a2 = h * omega * a1;
-    const double a3 = 1.0 / (1.0 + a2);
-    return {omega / a1, a2 * a3, a3};
-}
+using Soft = SoftCoefficients;
 
 // One constraint prepared for this substep's velocity passes: positions stay fixed meanwhile.
 struct Row {
@@ -312,7 +299,7 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
 
 } // namespace
 
-void apply_constraint_forces(const StepContext& ctx, Registry& bodies, ConstraintWorld& cw)
+void apply_constraint_forces(const StepContext& ctx, Registry& bodies, ConstraintWorld& cw, ExtraPass extra)
 {
     cw.max_error = 0.0;
     const double h = ctx.h;
@@ -334,7 +321,7 @@ void apply_constraint_forces(const StepContext& ctx, Registry& bodies, Constrain
             rows.push_back(r);
         cw.max_error = std::max(cw.max_error, st.error.linear);
     }
-    for (int pass = 0; pass < cw.iterations; ++pass)
+    for (int pass = 0; pass < cw.iterations; ++pass) {
         for (Row& r : rows) {
             const ConstraintDef& d = cw.reg.get<ConstraintModel>(r.id).def;
             if (r.has_mass)
@@ -342,6 +329,9 @@ void apply_constraint_forces(const StepContext& ctx, Registry& bodies, Constrain
             solve_angular(r);
             solve_friction(r);
         }
+        if (extra.fn != nullptr)
+            extra.fn(extra.ctx);
+    }
     for (Row& r : rows) {
         ConstraintState& st = cw.reg.get<ConstraintState>(r.id);
         // A spring that would need more than its break force snaps instead of pulling: its impulses

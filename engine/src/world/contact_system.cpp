@@ -33,13 +33,6 @@ Aabb body_box(const BodyModel& m, const Pose& p)
     return world_aabb(m.shape, origin, p.orientation);
 }
 
-PairAnchor* find_anchor(std::vector<PairAnchor>& anchors, uint64_t key)
-{
-    auto it = std::lower_bound(anchors.begin(), anchors.end(), key,
-                               [](const PairAnchor& a, uint64_t k) { return a.key < k; });
-    return it != anchors.end() && it->key == key ? &*it : nullptr;
-}
-
 // fn(part, begin, end) over [0, count) on the static partition (contact/penalty.h: per-pair slots).
 template <class Fn> void for_parts(const Parallel& par, size_t count, Fn&& fn)
 {
@@ -185,6 +178,13 @@ int substeps_needed(const WorldDef& def, const Registry& reg, const ContactWorld
 
 } // namespace
 
+const PairAnchor* find_pair_anchor(const std::vector<PairAnchor>& anchors, uint64_t key)
+{
+    auto it = std::lower_bound(anchors.begin(), anchors.end(), key,
+                               [](const PairAnchor& a, uint64_t k) { return a.key < k; });
+    return it != anchors.end() && it->key == key ? &*it : nullptr;
+}
+
 int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
 {
     io.proxies.clear();
@@ -268,7 +268,7 @@ PairForce pair_penalty(const PenaltyParams& params, const Registry& reg, Contact
     auto side = [&](Entity e) {
         return PenaltyBody{&reg.get<BodyModel>(e), &reg.get<Pose>(e), &reg.get<Velocity>(e)};
     };
-    const PairAnchor* old_anchor = find_anchor(io.anchors, pair.key());
+    const PairAnchor* old_anchor = find_pair_anchor(io.anchors, pair.key());
     if (!has_modes(reg, pair))
         return penalty_pair(params, pair, side(pair.a), side(pair.b), points, old_anchor, io_zeta);
     const PairPoints& r = io.pair_points[pi];

@@ -15,6 +15,7 @@
 #include "supermodal/contact.h"
 #include "supermodal/world.h"
 #include "world/components.h"
+#include "world/contact_solve.h"
 
 #include <span>
 #include <vector>
@@ -54,6 +55,7 @@ struct ContactWorld {
     /// Scratch: per part, parallel to part_points, each point's normal force [N] (pairs with modes only).
     std::vector<std::vector<double>> part_point_force;
     ContactEvents events; ///< Step events and the host's callback.
+    SoftContacts soft;    ///< Scratch: the soft solver's rows of this substep.
 
     /// The points of pair pi in this substep.
     [[nodiscard]] std::span<const ContactPoint> points_of(size_t pi) const
@@ -62,6 +64,9 @@ struct ContactWorld {
         return {part_points[r.part].data() + r.begin, r.end - r.begin};
     }
 };
+
+/// The anchor of the pair with `key` in `anchors` (sorted by key), or null.
+[[nodiscard]] const PairAnchor* find_pair_anchor(const std::vector<PairAnchor>& anchors, uint64_t key);
 
 /// Broadphase over boxes swept by each body's motion over dt; returns the substep count needed so that
 /// no body moves more than ContactDef::speculative_speed_factor of a partner's thickness per substep.

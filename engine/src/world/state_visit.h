@@ -24,7 +24,7 @@ enum class Field : uint8_t {
 };
 
 /// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
-inline constexpr uint32_t k_snapshot_layout_version = 2;
+inline constexpr uint32_t k_snapshot_layout_version = 3;
 
 [[nodiscard]] inline uint64_t entity_key(Entity e)
 {
@@ -121,6 +121,9 @@ template <class V, class W> void visit_contacts(V& v, W& w)
         visit_vec3(v, a.roll, Field::Hashed);
         v.real(a.stiffness, Field::Hashed);
         v.real(a.credit, Field::Hashed);
+        v.real(a.normal_load, Field::Hashed);
+        visit_vec3(v, a.friction_load, Field::Hashed);
+        visit_vec3(v, a.roll_load, Field::Hashed);
     }
     for (auto& m : v.sequence(w.contact.manifolds, Field::Saved)) {
         v.integer(m.key, Field::Hashed);

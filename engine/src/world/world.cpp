@@ -9,6 +9,7 @@
 #include "world/modal_system.h"
 #include "world/world_impl.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,6 +26,21 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point start)
 {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+Status validate_soft(const SoftContactDef& soft)
+{
+    if (!(soft.frequency_hz >= 0.0) || !std::isfinite(soft.frequency_hz))
+        return Error{"", "contact.soft.frequency_hz", "expected a finite frequency >= 0 Hz"};
+    if (!(soft.damping_ratio >= 0.0) || !std::isfinite(soft.damping_ratio))
+        return Error{"", "contact.soft.damping_ratio", "expected a finite ratio >= 0"};
+    if (!(soft.push_out_speed > 0.0) || !std::isfinite(soft.push_out_speed))
+        return Error{"", "contact.soft.push_out_speed", "expected a finite speed > 0 m/s"};
+    if (!(soft.restitution_speed >= 0.0) || !std::isfinite(soft.restitution_speed))
+        return Error{"", "contact.soft.restitution_speed", "expected a finite speed >= 0 m/s"};
+    if (soft.iterations < 1 || soft.iterations > 100)
+        return Error{"", "contact.soft.iterations", "expected an integer in [1, 100]"};
+    return {};
 }
 
 } // namespace
@@ -48,7 +64,7 @@ Status validate(const WorldDef& def)
         return Error{"", "constraint_iterations", "expected an integer in [1, 100]"};
     if (def.thread_count < 1 || def.thread_count > k_max_threads)
         return Error{"", "thread_count", "expected an integer in [1, 64]"};
-    return {};
+    return validate_soft(def.contact.soft);
 }
 
 std::string_view stage_name(Stage stage)
@@ -130,6 +146,10 @@ void World::Impl::step()
             freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, warnings);
         });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
+        if (def.contact.solver == ContactSolver::Soft) {
+            soft_substep(ctx, run);
+            continue;
+        }
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
@@ -157,6 +177,35 @@ void World::Impl::step()
     time = static_cast<double>(step_count) * def.dt;
     profile.total_ms = ms_since(step_start);
     locked = false;
+}
+
+// The rest of a substep with the soft contact solver: contact and constraint rows solved together with
+// the push-out, the positions moved, the contact rows relaxed without it (so the push-out leaves no
+// speed behind) and bounced; the modes then take the substep's impulses.
+template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run& run)
+{
+    run(Stage::PenaltyForces, [&] {
+        prepare_soft_contacts(def.contact, ctx, reg, contact);
+        constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
+        const ExtraPass pass{[](void* rows) { solve_soft_contacts(*static_cast<SoftContacts*>(rows), true); },
+                             &contact.soft};
+        apply_constraint_forces(ctx, reg, constraints, pass);
+        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+    });
+    run(Stage::IntegratePositions, [&] {
+        integrate_positions(ctx, parallel, reg, warnings);
+        freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, warnings);
+    });
+    run(Stage::PenaltyForces, [&] {
+        advance_soft_separations(contact.soft);
+        for (int i = 0; i < def.contact.soft.iterations; ++i)
+            solve_soft_contacts(contact.soft, false);
+        restitute_soft_contacts(contact.soft);
+        finish_soft_contacts(ctx, contact);
+        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+    });
+    run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, warnings); });
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
 }
 
 void World::step()

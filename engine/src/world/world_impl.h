@@ -33,6 +33,8 @@ struct World::Impl {
     Parallel parallel;                 ///< The step's loops over `tasks`.
 
     void step();
+    /// A substep's solve with the soft contact solver (after the narrowphase); `run` times the stages.
+    template <class Run> void soft_substep(const StepContext& ctx, Run& run);
 };
 
 /// The engine's access to a world's insides (World::m_impl); hosts have only the public functions.

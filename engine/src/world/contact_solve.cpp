@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: MIT
+#include "world/contact_solve.h"
+
+#include "dynamics/step_context.h"
+#include "world/contact_system.h"
+#include "world/modal_system.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace supermodal
+{
+namespace
+{
+
+// Most rows a pair takes: a sampled pair may have dozens of points on one patch, and as rigid rows
+// they are nearly redundant, which Gauss–Seidel converges on slowly (measured: a sampled sphere resting
+// at 1/60 s rolled at 2 mm/s on all its points). Four spanning the patch hold it flat.
+constexpr size_t k_max_rows_per_pair = 4;
+// Bodies with an exponent below this have flat faces and rest on a patch; rounder ones touch in one
+// point, their deepest (as the support-map manifold treats them): several rows around a sphere's contact
+// spot are nearly parallel, and their rounding let a sampled sphere roll off at 1.5 mm/s.
+constexpr double k_flat_exponent = 0.8;
+
+bool has_flat_faces(const BodyModel& m)
+{
+    return m.shape.type != ShapeType::Plane && std::min(m.shape.epsilon1, m.shape.epsilon2) < k_flat_exponent;
+}
+// The spring's frequency when none is set, as a fraction of the substep rate: stiff enough that a body
+// sinks little under its own weight (g/ω²: 0.28 mm at 1/60 s), soft enough that the passes converge
+// (measured on a column of five rounded boxes at 1/60 s: a quarter sank 1.2 mm per contact and needed
+// 12 passes to stand, a half 0.3 mm and 10).
+constexpr double k_auto_frequency_per_rate = 0.5;
+
+// Two unit vectors ⟂ n and each other: the world axis least along n, made perpendicular.
+void tangents(const Vec3& n, Vec3 out[2])
+{
+    const Vec3 ax{std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+    const Vec3 axis = ax.x <= ax.y && ax.x <= ax.z ? Vec3{1, 0, 0}
+                      : ax.y <= ax.z               ? Vec3{0, 1, 0}
+                                                   : Vec3{0, 0, 1};
+    out[0] = normalized(axis - dot(axis, n) * n);
+    out[1] = cross(n, out[0]);
+}
+
+double inverse_along(const Mat3& k, const Vec3& d)
+{
+    const double w = dot(d, k * d);
+    return w > 0.0 ? 1.0 / w : 0.0;
+}
+
+void apply(SoftPoint& p, const Vec3& impulse)
+{
+    push(p.a, impulse, Vec3{});
+    push(p.b, -1.0 * impulse, Vec3{});
+}
+
+Vec3 relative_velocity(const SoftPoint& p)
+{
+    return anchor_velocity(p.a) - anchor_velocity(p.b);
+}
+
+// The pair's spring rate [rad/s]: a static (or kinematic) partner doubles the frequency, since the
+// point's effective mass is then the moving body's alone.
+double pair_omega(const SoftContactDef& def, double h, bool one_moves)
+{
+    const double hz = def.frequency_hz > 0.0 ? def.frequency_hz : k_auto_frequency_per_rate / h;
+    return 2.0 * std::numbers::pi * hz * (one_moves ? 2.0 : 1.0);
+}
+
+// A point's spring, tuned to the larger of its effective mass and the mass its last load stands for
+// (load / g): the bottom contact of a stack carries the whole stack, and a spring tuned to one body
+// would sink under it by the stack's weight over m_eff·ω²; tuned to the load, every contact of the
+// stack sinks by the same g/ω², whatever its height.
+SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint& p, double gravity)
+{
+    const double load_mass = gravity > 0.0 ? p.normal_impulse / (h * gravity) : 0.0;
+    const double scale = p.normal_mass > 0.0 && load_mass > p.normal_mass ? load_mass / p.normal_mass : 1.0;
+    return make_soft(omega * std::sqrt(scale), zeta, h);
+}
+
+// Up to k_max_rows_per_pair of the points: the deepest, then each next the one that widens the patch
+// most in the contact plane (farthest from the first, then from their line, then from their triangle).
+size_t pick_rows(std::span<const ContactPoint> points, bool flat_faces,
+                 std::array<uint32_t, k_max_rows_per_pair>& out)
+{
+    if (!flat_faces) {
+        out[0] = 0;
+        for (size_t i = 1; i < points.size(); ++i)
+            if (points[i].depth > points[out[0]].depth)
+                out[0] = static_cast<uint32_t>(i);
+        return 1;
+    }
+    if (points.size() <= k_max_rows_per_pair) {
+        for (size_t i = 0; i < points.size(); ++i)
+            out[i] = static_cast<uint32_t>(i);
+        return points.size();
+    }
+    const Vec3 n = points[0].normal;
+    auto flat = [&](size_t i) { return points[i].point - dot(points[i].point, n) * n; };
+    size_t count = 0;
+    auto take_best = [&](auto&& score) {
+        size_t best = 0;
+        double best_score = -1.0;
+        for (size_t i = 0; i < points.size(); ++i)
+            if (const double sc = score(flat(i)); sc > best_score) {
+                best = i;
+                best_score = sc;
+            }
+        out[count++] = static_cast<uint32_t>(best);
+    };
+    take_best([&](const Vec3&) { return 0.0; });
+    for (size_t i = 1; i < points.size(); ++i)
+        if (points[i].depth > points[out[0]].depth)
+            out[0] = static_cast<uint32_t>(i);
+    const Vec3 p0 = flat(out[0]);
+    take_best([&](const Vec3& p) { return dot(p - p0, p - p0); });
+    const Vec3 p1 = flat(out[1]);
+    take_best([&](const Vec3& p) { return length(cross(p1 - p0, p - p0)); });
+    const Vec3 p2 = flat(out[2]);
+    take_best([&](const Vec3& p) {
+        return length(cross(p0 - p, p1 - p)) + length(cross(p1 - p, p2 - p)) + length(cross(p2 - p, p0 - p));
+    });
+    return count;
+}
+
+// One point's rows, not yet warm started.
+SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp, double h)
+{
+    SoftPoint p;
+    p.a = contact_side(reg, pair.a, cp.point, h);
+    p.b = contact_side(reg, pair.b, cp.point, h);
+    p.normal = cp.normal;
+    tangents(cp.normal, p.tangent);
+    p.separation = -cp.depth;
+    p.depth = cp.depth;
+    const Mat3 k = point_mass_inverse(p.a, p.b);
+    p.normal_mass = inverse_along(k, p.normal);
+    p.tangent_mass[0] = inverse_along(k, p.tangent[0]);
+    p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
+    p.approach = dot(relative_velocity(p), p.normal);
+    return p;
+}
+
+// The pair's rows and warm start: its last normal load shared by the points' weights, its friction
+// and rolling loads likewise, turned into today's contact plane.
+void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
+{
+    const BodyPair& pair = cw.pairs[sp.pair];
+    const BodyModel& ma = reg.get<BodyModel>(pair.a);
+    const BodyModel& mb = reg.get<BodyModel>(pair.b);
+    const std::span<const ContactPoint> points = cw.points_of(sp.pair);
+    SoftContacts& rows = cw.soft;
+    sp.friction = std::sqrt(ma.friction * mb.friction);
+    sp.restitution = std::max(ma.restitution, mb.restitution);
+    sp.rolling = std::max(ma.rolling_resistance, mb.rolling_resistance);
+    const double omega = pair_omega(def.soft, h, ma.inv_mass == 0.0 || mb.inv_mass == 0.0);
+    const PairAnchor* old = find_pair_anchor(cw.anchors, pair.key());
+    std::array<uint32_t, k_max_rows_per_pair> picked{};
+    sp.count = static_cast<uint32_t>(pick_rows(points, has_flat_faces(ma) || has_flat_faces(mb), picked));
+    const double w = 1.0 / sp.count; // the rows share the pair's last loads alike
+    for (size_t i = 0; i < sp.count; ++i) {
+        SoftPoint& p = rows.points[sp.first + i];
+        p = make_point(reg, pair, points[picked[i]], h);
+        if (old != nullptr)
+            p.normal_impulse = w * h * old->normal_load;
+        p.soft = point_soft(omega, def.soft.damping_ratio, h, p, rows.gravity);
+        if (old == nullptr)
+            continue;
+        p.tangent_impulse[0] = w * h * dot(old->friction_load, p.tangent[0]);
+        p.tangent_impulse[1] = w * h * dot(old->friction_load, p.tangent[1]);
+        apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
+                     p.tangent_impulse[1] * p.tangent[1]);
+    }
+    if (sp.rolling <= 0.0 || points.empty())
+        return;
+    SoftPoint& first = rows.points[sp.first];
+    Mat3 mass;
+    if (!invert(add_scaled(first.a.inv_inertia, first.b.inv_inertia, 1.0), mass))
+        return;
+    sp.roll_mass = mass;
+    if (old != nullptr) {
+        const Vec3 n = first.normal;
+        sp.roll_impulse = h * (old->roll_load - dot(old->roll_load, n) * n);
+        push_rigid_spin(first.a, sp.roll_impulse);
+        push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
+    }
+}
+
+void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
+{
+    const double vn = dot(relative_velocity(p), p.normal);
+    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+    if (p.separation > 0.0) {
+        bias = p.separation / h; // apart: only the approach that would close the gap within h is stopped
+    } else if (use_bias) {
+        bias = std::max(p.soft.bias_rate * p.separation, -push_out);
+        mass_scale = p.soft.mass_scale;
+        impulse_scale = p.soft.impulse_scale;
+    }
+    const double d = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+    const double total = std::max(p.normal_impulse + d, 0.0);
+    apply(p, (total - p.normal_impulse) * p.normal);
+    p.normal_impulse = total;
+}
+
+// Both tangent rows, then the pair of impulses clamped to the cone's disc of radius μ·λ_n.
+void solve_friction(SoftPoint& p, double mu)
+{
+    const Vec3 v = relative_velocity(p);
+    double t0 = p.tangent_impulse[0] - p.tangent_mass[0] * dot(v, p.tangent[0]);
+    double t1 = p.tangent_impulse[1] - p.tangent_mass[1] * dot(v, p.tangent[1]);
+    const double limit = mu * p.normal_impulse;
+    const double len = std::sqrt(t0 * t0 + t1 * t1);
+    if (len > limit) {
+        const double s = len > 0.0 ? limit / len : 0.0;
+        t0 *= s;
+        t1 *= s;
+    }
+    apply(p, (t0 - p.tangent_impulse[0]) * p.tangent[0] + (t1 - p.tangent_impulse[1]) * p.tangent[1]);
+    p.tangent_impulse[0] = t0;
+    p.tangent_impulse[1] = t1;
+}
+
+// Rolling resistance: the relative rolling spin (in the contact plane) stopped by an angular impulse up
+// to ℓ·λ_n, the lever of the normal force about the centre.
+void solve_rolling(SoftPair& sp, SoftContacts& rows)
+{
+    SoftPoint& first = rows.points[sp.first];
+    double normal = 0.0;
+    for (uint32_t i = 0; i < sp.count; ++i)
+        normal += rows.points[sp.first + i].normal_impulse;
+    const Vec3 n = first.normal;
+    const Vec3 w = angular_velocity(first.a) - angular_velocity(first.b);
+    Vec3 total = sp.roll_impulse - sp.roll_mass * (w - dot(w, n) * n);
+    total = total - dot(total, n) * n;
+    const double limit = sp.rolling * normal;
+    if (length(total) > limit)
+        total = limit > 0.0 ? total * (limit / length(total)) : Vec3{};
+    const Vec3 d = total - sp.roll_impulse;
+    push_rigid_spin(first.a, d);
+    push_rigid_spin(first.b, -1.0 * d);
+    sp.roll_impulse = total;
+}
+
+// Per pair, its normal rows first, so friction is bounded by this pass's normal impulses.
+void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
+{
+    for (uint32_t i = 0; i < sp.count; ++i)
+        solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias);
+    for (uint32_t i = 0; i < sp.count; ++i)
+        solve_friction(rows.points[sp.first + i], sp.friction);
+    if (sp.rolling > 0.0 && sp.roll_mass.m[0][0] != 0.0)
+        solve_rolling(sp, rows);
+}
+
+// What world_contacts() reports for a solved pair: the impulse-weighted point, the summed force.
+ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContacts& rows, double& out_normal,
+                      Vec3& out_friction)
+{
+    Vec3 centroid{}, normal_sum{}, force{};
+    double weight = 0.0, deepest = 0.0;
+    out_normal = 0.0;
+    out_friction = Vec3{};
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        const SoftPoint& p = rows.points[sp.first + i];
+        const double w = p.normal_impulse + 1e-12; // untouched pairs still get a centroid
+        centroid += w * p.a.point;
+        normal_sum += w * p.normal;
+        weight += w;
+        deepest = std::max(deepest, p.depth);
+        out_normal += p.normal_impulse;
+        out_friction += p.tangent_impulse[0] * p.tangent[0] + p.tangent_impulse[1] * p.tangent[1];
+    }
+    force = out_normal * normalized(normal_sum) + out_friction;
+    return {.a = pair.a,
+            .b = pair.b,
+            .point = centroid / weight,
+            .normal = normalized(normal_sum),
+            .depth = deepest,
+            .force_on_a = force / rows.h,
+            .point_count = static_cast<int>(sp.count)};
+}
+
+} // namespace
+
+void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io)
+{
+    SoftContacts& rows = io.soft;
+    rows.h = ctx.h;
+    rows.push_out_speed = def.soft.push_out_speed;
+    rows.restitution_speed = def.soft.restitution_speed;
+    rows.gravity = length(ctx.gravity);
+    rows.pairs.clear();
+    io.contacts.clear();
+    io.max_penetration = 0.0;
+    // A pair takes rows when it has points and something that can move.
+    size_t point_count = 0;
+    for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
+        const size_t n = std::min(io.points_of(pi).size(), k_max_rows_per_pair);
+        const BodyPair& pair = io.pairs[pi];
+        if (n == 0 || !(reg.get<BodyModel>(pair.a).inv_mass + reg.get<BodyModel>(pair.b).inv_mass > 0.0))
+            continue;
+        rows.pairs.push_back({.pair = static_cast<uint32_t>(pi),
+                              .first = static_cast<uint32_t>(point_count),
+                              .count = static_cast<uint32_t>(n)});
+        point_count += n;
+    }
+    rows.points.resize(point_count);
+    prepare_modal_substep(reg, ctx.h);
+    // Each pair writes its own rows; the warm start pushes the bodies, so it runs in pair order.
+    for (SoftPair& sp : rows.pairs)
+        prepare_pair(def, reg, io, sp, ctx.h);
+}
+
+void solve_soft_contacts(SoftContacts& io, bool use_bias)
+{
+    for (SoftPair& sp : io.pairs)
+        solve_pair(sp, io, use_bias);
+}
+
+void advance_soft_separations(SoftContacts& io)
+{
+    // The points moved with the solved velocities over the substep; the rotation's change of the lever
+    // arms is second order in h.
+    for (SoftPoint& p : io.points)
+        p.separation += io.h * dot(relative_velocity(p), p.normal);
+}
+
+void restitute_soft_contacts(SoftContacts& io)
+{
+    for (SoftPair& sp : io.pairs) {
+        if (sp.restitution == 0.0)
+            continue;
+        for (uint32_t i = 0; i < sp.count; ++i) {
+            SoftPoint& p = io.points[sp.first + i];
+            if (p.approach > -io.restitution_speed || p.normal_impulse == 0.0)
+                continue;
+            const double vn = dot(relative_velocity(p), p.normal);
+            const double d = -p.normal_mass * (vn + sp.restitution * p.approach);
+            const double total = std::max(p.normal_impulse + d, 0.0);
+            apply(p, (total - p.normal_impulse) * p.normal);
+            p.normal_impulse = total;
+        }
+    }
+}
+
+void finish_soft_contacts(const StepContext& ctx, ContactWorld& io)
+{
+    const SoftContacts& rows = io.soft;
+    std::vector<PairAnchor> anchors;
+    anchors.reserve(rows.pairs.size());
+    for (const SoftPair& sp : rows.pairs) {
+        const BodyPair& pair = io.pairs[sp.pair];
+        double normal = 0.0;
+        Vec3 friction{};
+        const ContactInfo info = pair_info(pair, sp, rows, normal, friction);
+        PairAnchor anchor{.key = pair.key()};
+        anchor.normal_load = normal / ctx.h;
+        anchor.friction_load = friction / ctx.h;
+        anchor.roll_load = sp.roll_impulse / ctx.h;
+        anchors.push_back(anchor);
+        io.contacts.push_back(info);
+        io.max_penetration = std::max(io.max_penetration, info.depth);
+        accumulate_touch(io.events, sp.pair, info, normal / ctx.h, ctx.h);
+    }
+    io.anchors.swap(anchors);
+}
+
+} // namespace supermodal

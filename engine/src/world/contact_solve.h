@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// The soft contact solver: every contact point is a one-sided soft constraint (dynamics/soft_constraint.h)
+// on the bodies' relative normal velocity, with two friction rows bounded by the Coulomb cone and, per
+// pair, a rolling-resistance row bounded by ℓ·λ_n. The rows are solved in the same Gauss–Seidel passes
+// as the joints, warm started from the pair's loads of the last substep. After the positions move, a
+// relax pass solves them again without the push-out, so the push-out moves the bodies apart without
+// leaving them the speed it took (Box2D v3's soft step); restitution then sets a bouncing contact's
+// separation speed. A modal body takes each impulse through its modes (world/constraint_side.h), whose
+// compliance at the point joins the effective mass.
+#pragma once
+
+#include "dynamics/soft_constraint.h"
+#include "supermodal/contact.h"
+#include "world/constraint_side.h"
+
+#include <vector>
+
+namespace supermodal
+{
+
+struct ContactWorld;
+struct StepContext;
+struct StepWarnings;
+
+/// One contact point as a soft constraint for one substep.
+struct SoftPoint {
+    Side a, b;
+    Vec3 normal{};               ///< Unit, from b towards a, world.
+    Vec3 tangent[2]{};           ///< Unit, ⟂ normal and each other.
+    double separation = 0.0;     ///< Gap along the normal [m], < 0 when overlapping.
+    double normal_mass = 0.0;    ///< 1 / (n·K·n) [kg].
+    double tangent_mass[2]{};    ///< [kg].
+    double normal_impulse = 0.0; ///< Accumulated this substep, ≥ 0 [N·s].
+    double tangent_impulse[2]{}; ///< Accumulated this substep [N·s].
+    double approach = 0.0;       ///< Normal velocity before the solve [m/s] (< 0: closing).
+    double depth = 0.0;          ///< Penetration found by the narrowphase [m].
+    SoftCoefficients soft{};     ///< The point's spring (stiffened by the load it carries).
+};
+
+/// One touching pair's rows: its points, and its pair-wide settings and rolling row.
+struct SoftPair {
+    uint32_t pair = 0;        ///< Index into ContactWorld::pairs.
+    uint32_t first = 0;       ///< First point in SoftContacts::points.
+    uint32_t count = 0;       ///< Points.
+    double friction = 0.0;    ///< μ [-].
+    double restitution = 0.0; ///< e [-].
+    double rolling = 0.0;     ///< Rolling lever arm ℓ [m] (0: no rolling row).
+    Mat3 roll_mass{};         ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
+    Vec3 roll_impulse{};      ///< Accumulated angular impulse on a [N·m·s].
+};
+
+/// The soft solver's rows of one substep (scratch of ContactWorld).
+struct SoftContacts {
+    std::vector<SoftPoint> points;
+    std::vector<SoftPair> pairs;
+    std::vector<uint32_t> point_offset; ///< Per pair of ContactWorld::pairs, its first point.
+    double h = 0.0;                     ///< Substep [s].
+    double push_out_speed = 0.0;        ///< [m/s].
+    double restitution_speed = 0.0;     ///< [m/s].
+    double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
+};
+
+/// Rows from this substep's points, warm started (their impulses already applied to the bodies).
+void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);
+/// One Gauss–Seidel pass over the rows; with use_bias the springs push overlaps apart.
+void solve_soft_contacts(SoftContacts& io, bool use_bias);
+/// After the positions moved with the solved velocities: each point's gap as it is now.
+void advance_soft_separations(SoftContacts& io);
+/// The bounce: points that closed faster than restitution_speed leave at e times that speed.
+void restitute_soft_contacts(SoftContacts& io);
+/// The pairs' loads into their anchors (warm starting), contacts, events and the deepest overlap.
+void finish_soft_contacts(const StepContext& ctx, ContactWorld& io);
+
+} // namespace supermodal
