@@ -52,6 +52,9 @@ set terminal pngcairo size 1200,500 font "Helvetica,10" noenhanced
 set output "{path[:-4]}.png"
 set multiplot layout 1,2 title "Stacking: rounded boxes (half 0.1 m), 10 s, one substep, one thread"
 set logscale xy
+set format "%g"
+set xrange [0.0008:0.02]
+set yrange [{FLOOR}:100]
 set grid
 set xlabel "dt [s]"
 set key bottom right font ",8"
