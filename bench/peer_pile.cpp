@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+// The pile of bench/pile_bench.cpp stepped by supermodal and by Bullet in one run, on one thread: N bodies
+// (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an open box (static
+// half-spaces), dt = 1/240 s, 720 steps, μ = 0.5, restitution 0. Measured over the last 240 steps: ms
+// per step (wall, and process CPU) and the deepest overlap after the last step (supermodal: its
+// contacts; Bullet: the distances of its contact manifolds' points). Boxes are supermodal's rounded box
+// (ε = 0.3) against btBoxShape, ellipsoids a btMultiSphereShape of one scaled sphere; Bullet runs with
+// deactivation off, then on. Both engines get the same gravity, pair friction, restitution, mass,
+// inertia and step (Bullet: fixed step dt, one internal step per step).
+//
+// Usage: peer_pile [N=1000] [substeps=1] [--csv FILE] [--set key=value]... (bench/peer/peer_scene.h)
+#include "peer/peer_scene.h"
+#ifdef SM_BENCH_BULLET
+#include "peer/bullet_world.h"
+#endif
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+namespace
+{
+
+using namespace peer;
+
+constexpr double k_pitch = 0.2;   // grid pitch [m]
+constexpr int k_layers = 10;      // grid layers [-]
+constexpr double k_jitter = 0.02; // ± jitter of each grid position [m]
+
+struct Options {
+    int n = 1000;
+    int substeps = 1;
+    int steps = 720;       // whole run [-]
+    int timed_steps = 240; // measured at the end [-]
+    std::vector<std::string> shapes{"box", "sphere", "ellipsoid"};
+    std::string engine = "all"; // all, supermodal or bullet
+    std::string csv;
+    SupermodalOptions supermodal;
+};
+
+struct Row {
+    std::string engine;
+    Kind kind = Kind::Box;
+    int substeps = 1;
+    double ms = 0.0, cpu_ms = 0.0; // per step [ms]
+    double overlap = 0.0;          // deepest after the last step [m]
+    double ratio = 0.0;            // supermodal / this engine, CPU ms per step [-]; 0: not a peer row
+};
+
+BodySpec pile_body(Kind kind)
+{
+    BodySpec b;
+    b.kind = kind;
+    b.half = kind == Kind::Ellipsoid ? sm::Vec3{0.06, 0.04, 0.03} : sm::Vec3{0.05, 0.05, 0.05};
+    return b;
+}
+
+// The same bodies, in the same order and from the same random numbers, as pile_bench.cpp.
+SceneSpec pile_scene(Kind kind, int n)
+{
+    SceneSpec s;
+    s.dt = 1.0 / 240.0;
+    const int per_layer = (n + k_layers - 1) / k_layers;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
+    const double half = 0.5 * side * k_pitch; // inner half-width of the box [m]
+    s.planes = {
+        {{0, 1, 0}, 0.0}, {{1, 0, 0}, -half}, {{-1, 0, 0}, -half}, {{0, 0, 1}, -half}, {{0, 0, -1}, -half}};
+    Lcg rng;
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / per_layer, cell = i % per_layer;
+        BodySpec b = pile_body(kind);
+        b.position = {-half + k_pitch * (cell % side + 0.5) + k_jitter * rng.next(),
+                      k_pitch * (layer + 0.5) + k_jitter * rng.next(),
+                      -half + k_pitch * (cell / side + 0.5) + k_jitter * rng.next()};
+        const sm::Quat q{rng.next(), rng.next(), rng.next(), rng.next()};
+        b.orientation = sm::normalized(q);
+        s.bodies.push_back(b);
+    }
+    return s;
+}
+
+Row measure(PeerWorld& world, const Options& o)
+{
+    for (int i = 0; i < o.steps - o.timed_steps; ++i)
+        world.step();
+    const double wall = wall_seconds(), cpu = process_cpu_seconds();
+    for (int i = 0; i < o.timed_steps; ++i)
+        world.step();
+    Row r;
+    r.ms = 1e3 * (wall_seconds() - wall) / o.timed_steps;
+    r.cpu_ms = 1e3 * (process_cpu_seconds() - cpu) / o.timed_steps;
+    r.overlap = world.max_penetration();
+    return r;
+}
+
+std::vector<Row> run_shape(Kind kind, const Options& o)
+{
+    const SceneSpec scene = pile_scene(kind, o.n);
+    std::vector<Row> rows;
+    auto add = [&](std::string engine, PeerWorld& world, int substeps) {
+        Row r = measure(world, o);
+        r.engine = std::move(engine);
+        r.kind = kind;
+        r.substeps = substeps;
+        rows.push_back(r);
+    };
+    if (o.engine != "bullet")
+        add("supermodal", *make_supermodal_world(scene, o.supermodal), o.supermodal.substeps);
+#ifdef SM_BENCH_BULLET
+    if (o.engine != "supermodal")
+        for (const bool sleep : {false, true})
+            add(sleep ? "bullet_sleep" : "bullet", *make_bullet_world(scene, {.deactivation = sleep}), 1);
+    if (rows.front().engine == "supermodal")
+        for (Row& r : rows)
+            if (r.engine != "supermodal")
+                r.ratio = rows.front().cpu_ms / r.cpu_ms;
+#endif
+    return rows;
+}
+
+void report(const std::vector<Row>& rows, const Options& o)
+{
+    std::printf("%-13s %-10s %6s %9s %9s %12s %10s\n", "engine", "shape", "substp", "ms/step", "cpu_ms",
+                "overlap[mm]", "sm/peer");
+    for (const Row& r : rows)
+        std::printf("%-13s %-10s %6d %9.3f %9.3f %12.3f %10.2f\n", r.engine.c_str(), kind_name(r.kind).data(),
+                    r.substeps, r.ms, r.cpu_ms, 1e3 * r.overlap, r.ratio);
+    if (o.csv.empty())
+        return;
+    std::ofstream f(o.csv);
+#ifdef SM_BENCH_BULLET
+    f << "# peer: " << bullet_name() << ", Bullet box and ellipsoid margin " << BulletOptions{}.margin
+      << " m\n";
+#endif
+    f << "date,machine,engine,shape,n,substeps,ms_per_step,cpu_ms_per_step,end_overlap_m,ratio_sm_over_"
+         "peer\n";
+    const std::string date = today(), machine = machine_name();
+    for (const Row& r : rows) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.6f,%s\n", date.c_str(),
+                      machine.c_str(), r.engine.c_str(), kind_name(r.kind).data(), o.n, r.substeps, r.ms,
+                      r.cpu_ms, r.overlap, r.ratio > 0.0 ? std::to_string(r.ratio).c_str() : "");
+        f << line;
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    Options o;
+    std::vector<std::string> sets;
+    std::string solver = "penalty";
+    CLI::App app{"Pile of N bodies in an open box: supermodal against Bullet, one thread"};
+    app.add_option("n", o.n, "Bodies [-]")->check(CLI::PositiveNumber);
+    app.add_option("substeps", o.substeps, "supermodal substeps per step [-]")->check(CLI::Range(1, 1000));
+    app.add_option("--steps", o.steps, "Steps of the whole run [-]")->check(CLI::PositiveNumber);
+    app.add_option("--timed", o.timed_steps, "Steps measured at the end [-]")->check(CLI::PositiveNumber);
+    app.add_option("--shape", o.shapes, "Shapes: box, sphere, ellipsoid")
+        ->check(CLI::IsMember({"box", "sphere", "ellipsoid"}))
+        ->delimiter(',');
+    app.add_option("--engine", o.engine, "all, supermodal or bullet")
+        ->check(CLI::IsMember({"all", "supermodal", "bullet"}));
+    app.add_option("--csv", o.csv, "Write the table as CSV here");
+    app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
+    app.add_option("--solver", solver, "supermodal contact solver (penalty)");
+    CLI11_PARSE(app, argc, argv);
+    o.timed_steps = std::min(o.timed_steps, o.steps);
+    for (const std::string& kv : sets)
+        if (const std::string error = apply_contact_setting(o.supermodal.contact, kv); !error.empty())
+            return std::fprintf(stderr, "peer_pile: --set %s\n", error.c_str()), 2;
+    if (const std::string error = apply_contact_solver(o.supermodal.contact, solver); !error.empty())
+        return std::fprintf(stderr, "peer_pile: --solver: %s\n", error.c_str()), 2;
+    std::vector<Row> rows;
+    for (const std::string& name : o.shapes) {
+        const Kind kind = name == "box" ? Kind::Box : name == "sphere" ? Kind::Sphere : Kind::Ellipsoid;
+        for (const Row& r : run_shape(kind, o))
+            rows.push_back(r);
+    }
+    std::printf("pile, N = %d, dt = 1/240 s, steps %d-%d, one thread, %s\n", o.n, o.steps - o.timed_steps + 1,
+                o.steps, machine_name().c_str());
+    report(rows, o);
+    return 0;
+}
