@@ -149,17 +149,24 @@ std::string apply_contact_setting(sm::ContactDef& def, std::string_view key_valu
         return parse_number(value, def.max_samples_per_body);
     if (key == "max_auto_substeps")
         return parse_number(value, def.max_auto_substeps);
+    if (key == "soft.frequency_hz")
+        return parse_number(value, def.soft.frequency_hz);
+    if (key == "soft.iterations")
+        return parse_number(value, def.soft.iterations);
     return "unknown contact setting '" + std::string(key) + "'";
 }
 
-std::string apply_contact_solver(sm::ContactDef& /*def*/, std::string_view name)
+std::string apply_contact_solver(sm::ContactDef& def, std::string_view name)
 {
-    // CONTACT SOLVER CHOICE: penalty springs are the engine's only contact solver. When ContactDef
-    // gains a field that picks another, map its names onto it here, e.g.
-    //   if (name == "soft") { def.solver = sm::ContactSolver::Soft; return {}; }
-    if (name == "penalty")
+    if (name == "penalty") {
+        def.solver = sm::ContactSolver::Penalty;
         return {};
-    return "unknown contact solver '" + std::string(name) + "' (this engine has: penalty)";
+    }
+    if (name == "soft") {
+        def.solver = sm::ContactSolver::Soft;
+        return {};
+    }
+    return "unknown contact solver '" + std::string(name) + "' (expected penalty or soft)";
 }
 
 double process_cpu_seconds()
