@@ -35,6 +35,12 @@ struct Side {
 void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse);
 /// An angular impulse on the rigid body only (joint limits, joint friction).
 void push_rigid_spin(Side& s, const Vec3& angular_impulse);
+/// Whether push() and push_rigid_spin() change anything on this side: a dynamic body's velocity or a
+/// modal body's loads. The world and static or kinematic bodies only feed their motion in.
+[[nodiscard]] inline bool takes_impulse(const Side& s)
+{
+    return (s.v != nullptr && s.inv_mass != 0.0) || s.modal.active();
+}
 /// K = anchor velocity change of a relative to b per unit impulse [1/kg] (rigid and modal).
 [[nodiscard]] Mat3 point_mass_inverse(const Side& a, const Side& b);
 /// Spin change of b relative to a per unit angular impulse [1/(kg·m²)] (rigid and modal).

@@ -133,7 +133,7 @@ void World::Impl::step()
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
-            apply_constraint_forces(ctx, reg, constraints);
+            apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints);
             freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
             update_contact_anchors(ctx, reg, parallel, contact);
         });
