@@ -112,7 +112,7 @@ void World::Impl::step()
         profile.pair_count = contact.pairs.size();
     });
     // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
-    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -127,22 +127,23 @@ void World::Impl::step()
         faults.substep = i;
         run(Stage::IntegrateForces, [&] {
             integrate_forces(ctx, parallel, reg);
-            freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, warnings);
+            freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, scratch.integrate, warnings);
         });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
             apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints);
-            freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+            freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
             update_contact_anchors(ctx, reg, parallel, contact);
         });
-        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, warnings); });
+        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
         run(Stage::IntegratePositions, [&] {
-            integrate_positions(ctx, parallel, reg, warnings);
-            freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, warnings);
+            integrate_positions(ctx, parallel, reg, scratch.integrate, warnings);
+            freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, scratch.integrate, warnings);
         });
-        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
+        run(Stage::UpdateSurfaces,
+            [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     }
     run(Stage::Events, [&] {
         clear_forces(reg);

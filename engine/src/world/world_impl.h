@@ -8,12 +8,16 @@
 #include "world/components.h"
 #include "world/constraint_system.h"
 #include "world/contact_system.h"
+#include "world/integrate.h"
+#include "world/modal_system.h"
 
 namespace supermodal
 {
 
 /// Buffers the step's stages keep from substep to substep, so a warm step allocates nothing.
 struct StepScratch {
+    IntegrateScratch integrate;
+    ModalScratch modal;
     ConstraintScratch constraints;
 };
 
