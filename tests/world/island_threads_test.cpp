@@ -83,7 +83,7 @@ std::vector<sm::ConstraintDef> add_chains(sm::World& w, sm::Entity beam)
 }
 
 // Joined chains: a dynamic bar hung from the world holding two links, and a soft modal ball hanging
-// from two links.
+// from two links (a ball joint and a weld).
 void add_joined(sm::World& w)
 {
     const sm::Entity bar = sm::create_body(w, sm::test::ellipsoid_def({0.3, 0.02, 0.02}, {0, 1.0, 1.0}));
@@ -100,7 +100,10 @@ void add_joined(sm::World& w)
     for (double x : {-0.05, 0.05}) {
         const sm::Entity link = add_link(w, {x, 0.55 + k_link, -1.0});
         (void)sm::create_constraint(w, joint(link, top_half, {}, {x, 0.55 + k_link, -1.0}));
-        (void)sm::create_constraint(w, joint(link, bottom_half, ball, {x, 0.05, 0}));
+        sm::ConstraintDef to_ball = joint(link, bottom_half, ball, {x, 0.05, 0});
+        if (x > 0.0)
+            to_ball.type = sm::ConstraintType::Weld; // the modes' rotation at the anchor too
+        (void)sm::create_constraint(w, to_ball);
     }
 }
 

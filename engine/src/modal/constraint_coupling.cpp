@@ -53,14 +53,30 @@ void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>
             0.5 * Vec3{grad[1][k].z - grad[2][k].y, grad[2][k].x - grad[0][k].z, grad[0][k].y - grad[1][k].x};
 }
 
-Mat3 sum_outer(const std::vector<Vec3>& v, const std::vector<double>& weight)
+// Σ (gain_k/h) v_k v_kᵀ.
+Mat3 sum_outer(const std::vector<Vec3>& v, const std::vector<double>& gain, double h)
 {
     Mat3 m;
-    for (size_t k = 0; k < v.size(); ++k)
+    for (size_t k = 0; k < v.size(); ++k) {
+        const double weight = gain[k] / h;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
-                m.m[i][j] += weight[k] * v[k][i] * v[k][j];
+                m.m[i][j] += weight * v[k][i] * v[k][j];
+    }
     return m;
+}
+
+// Empties an anchor but keeps its buffers, so anchors made every substep allocate nothing once warm.
+void clear_anchor(ModalAnchor& a)
+{
+    a.body = nullptr;
+    a.phi.clear();
+    a.psi.clear();
+    a.drift.clear();
+    a.gain.clear();
+    a.h = 0.0;
+    a.displacement = Vec3{};
+    a.rotation = Vec3{};
 }
 
 // The map ModalUpdate will use for mode k over h (update_modal_bodies): central difference below its
@@ -91,7 +107,7 @@ modal::ModeStep mode_map(const ModalBody& b, size_t k, double h)
 bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bool with_rotation,
                   ModalAnchor& out)
 {
-    out = ModalAnchor{};
+    clear_anchor(out);
     if (b == nullptr || !is_finite(local) || !(h > 0.0))
         return false;
     out.h = h;
@@ -118,7 +134,7 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
         out.gain[k] = s.b1 / h;
     }
     if (!is_finite(out.displacement) || !is_finite(out.rotation)) {
-        out = ModalAnchor{};
+        clear_anchor(out);
         return false;
     }
     out.body = b;
@@ -143,18 +159,12 @@ Vec3 modal_anchor_spin(const ModalAnchor& a)
 
 Mat3 modal_anchor_inverse_mass(const ModalAnchor& a)
 {
-    std::vector<double> w(a.gain.size());
-    for (size_t k = 0; k < w.size(); ++k)
-        w[k] = a.gain[k] / a.h;
-    return sum_outer(a.phi, w);
+    return sum_outer(a.phi, a.gain, a.h);
 }
 
 Mat3 modal_anchor_inverse_inertia(const ModalAnchor& a)
 {
-    std::vector<double> w(a.gain.size());
-    for (size_t k = 0; k < w.size(); ++k)
-        w[k] = a.gain[k] / a.h;
-    return sum_outer(a.psi, w);
+    return sum_outer(a.psi, a.gain, a.h);
 }
 
 void modal_anchor_push(ModalAnchor& a, const Vec3& impulse, const Vec3& angular_impulse)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace supermodal
 {
@@ -45,12 +46,16 @@ bool invert(const Mat3& a, Mat3& out)
     return true;
 }
 
-Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation)
+void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& s)
 {
-    Side s;
+    // Everything afresh but the modal buffers (no allocation once warm).
+    ModalAnchor modal = std::move(s.modal);
+    s = Side{};
+    s.modal = std::move(modal);
     if (e.is_null() || !bodies.valid(e)) {
         s.point = local;
-        return s;
+        modal_anchor(nullptr, Quat{}, local, h, false, s.modal); // the world has no modes: empties it
+        return;
     }
     s.m = &bodies.get<BodyModel>(e);
     s.p = &bodies.get<Pose>(e);
@@ -67,7 +72,6 @@ Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     } else if (s.m->motion == MotionType::Kinematic) {
         s.v = &bodies.get<Velocity>(e); // moves, but takes no impulse (inv_mass 0)
     }
-    return s;
 }
 
 Quat anchor_orientation(const Side& s)

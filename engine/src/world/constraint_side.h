@@ -20,9 +20,9 @@ struct Side {
     ModalAnchor modal; ///< The modes at the anchor (modal bodies only).
 };
 
-/// The side of body e (null: the world, `local` a world point) at shape-frame anchor `local`.
-/// `with_rotation`: the modes' rotation at the anchor is needed too (welds).
-[[nodiscard]] Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation);
+/// Makes `out` the side of body e (null: the world, `local` a world point) at shape-frame anchor `local`,
+/// reusing out's modal buffers. `with_rotation`: the modes' rotation at the anchor is needed too (welds).
+void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& out);
 /// Orientation of the material at the anchor: the body's, turned by the modal rotation there.
 [[nodiscard]] Quat anchor_orientation(const Side& s);
 /// Velocity of the anchor point [m/s], modes included.

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <utility>
 
 namespace supermodal
 {
@@ -262,8 +263,8 @@ bool prepare(Row& r, Registry& bodies, double h)
     const ConstraintDef& d = c.def;
     // A weld holds the material's orientation at the anchors, so it needs the modes' rotation there.
     const bool weld = d.type == ConstraintType::Weld;
-    r.a = make_side(bodies, d.a, c.local_a, h, weld);
-    r.b = make_side(bodies, d.b, c.local_b, h, weld);
+    make_side(bodies, d.a, c.local_a, h, weld, r.a);
+    make_side(bodies, d.b, c.local_b, h, weld, r.b);
     if (r.a.m == nullptr)
         return false;
     r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
@@ -281,6 +282,15 @@ bool prepare(Row& r, Registry& bodies, double h)
     if (d.angular_damping > 0.0)
         setup_friction(r, d.angular_damping, h);
     return true;
+}
+
+// A fresh row that keeps its sides' modal buffers, so modal rows allocate nothing once warm.
+void reset_row(Row& r)
+{
+    Side a = std::move(r.a), b = std::move(r.b);
+    r = Row{};
+    r.a = std::move(a);
+    r.b = std::move(b);
 }
 
 // The island node of a side: its body when the row's pushes change it (velocity or modes), else none.
@@ -307,7 +317,7 @@ size_t prepare_rows(double h, Registry& bodies, ConstraintWorld& cw, ConstraintS
         if (st.broken)
             continue;
         Row& r = scratch.rows[n];
-        r = Row{};
+        reset_row(r);
         r.id = ce;
         r.model = &cw.reg.get<ConstraintModel>(ce);
         r.state = &st;
