@@ -5,17 +5,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace supermodal
 {
 namespace
 {
 
-// φ_k at a rest point [1/√kg], shape frame, every mode.
-void mode_field(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& out)
+// φ_k at a rest point [1/√kg], shape frame: one slot of `out` per mode.
+void mode_field(const ModalBasis& basis, const Vec3& point, std::span<Vec3> out)
 {
-    const size_t r = static_cast<size_t>(basis.mode_count);
-    out.assign(r, Vec3{});
+    const size_t r = out.size();
+    std::fill(out.begin(), out.end(), Vec3{});
     const LatticeWeights lw = modal_weights(basis, point);
     for (int j = 0; j < lw.count; ++j) {
         const double* node = &basis.mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
@@ -27,10 +28,16 @@ void mode_field(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& o
 
 // ψ_k = ½∇×φ_k at a rest point [rad/(√kg·m)], shape frame. Central differences a ten-thousandth of a
 // cell apart (the field is a low-order polynomial inside a cell), one-sided at the lattice box.
-void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& out)
+// `work` holds the three gradients and the two fields of a difference (kept by the anchor).
+void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& work,
+                   std::vector<Vec3>& out)
 {
     const size_t r = static_cast<size_t>(basis.mode_count);
-    std::vector<Vec3> grad[3], lo_f, hi_f; // grad[j][k] = ∂φ_k/∂x_j
+    work.assign(5 * r, Vec3{});
+    const std::span<Vec3> all(work);
+    const std::span<Vec3> grad[3] = {all.subspan(0, r), all.subspan(r, r),
+                                     all.subspan(2 * r, r)}; // ∂φ_k/∂x_j
+    const std::span<Vec3> lo_f = all.subspan(3 * r, r), hi_f = all.subspan(4 * r, r);
     for (int j = 0; j < 3; ++j) {
         const double box_lo = basis.lattice_min[j];
         const double box_hi = box_lo + basis.cells[j] * basis.cell_size[j];
@@ -41,7 +48,6 @@ void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>
         hi[j] = std::min(box_hi, c + delta);
         mode_field(basis, lo, lo_f);
         mode_field(basis, hi, hi_f);
-        grad[j].assign(r, Vec3{});
         const double span = hi[j] - lo[j];
         if (span > 0.0)
             for (size_t k = 0; k < r; ++k)
@@ -113,9 +119,10 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
     out.h = h;
     const ModalBasis& basis = *b->model->basis;
     const ModalState& st = b->state;
+    out.phi.assign(static_cast<size_t>(basis.mode_count), Vec3{});
     mode_field(basis, local, out.phi);
     if (with_rotation)
-        mode_rotation(basis, local, out.psi);
+        mode_rotation(basis, local, out.work, out.psi);
     const size_t r = out.phi.size();
     out.drift.resize(r);
     out.gain.resize(r);
