@@ -16,11 +16,11 @@ struct Soft {
     double impulse_scale = 0.0; ///< [-].
 };
 
-struct ConstraintRow {
+/// Everything of a row but its sides: plain data, reset wholesale every substep.
+struct ConstraintRowTerms {
     Entity id{};
     const ConstraintModel* model = nullptr; ///< In the constraint registry, fixed while the world steps.
     ConstraintState* state = nullptr;
-    Side a, b;
     Soft soft{};
     double h = 0.0; ///< Substep [s].
     Vec3 gap{};     ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).
@@ -44,6 +44,11 @@ struct ConstraintRow {
     Mat3 friction_compliance{}; ///< (h·C)⁻¹ [1/(kg·m²)], C the friction coefficient [N·m·s].
     Mat3 friction_mass{};       ///< (Ia⁻¹ + Ib⁻¹ + (h·C)⁻¹)⁻¹ [kg·m²].
     Vec3 friction_impulse{};    ///< Accumulated angular impulse on b [N·m·s].
+};
+
+/// The sides hold modal buffers that make_side() refills in place, so they are kept, not reset.
+struct ConstraintRow : ConstraintRowTerms {
+    Side a, b;
 };
 
 } // namespace supermodal

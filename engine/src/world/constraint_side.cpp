@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 namespace supermodal
 {
@@ -48,10 +47,14 @@ bool invert(const Mat3& a, Mat3& out)
 
 void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& s)
 {
-    // Everything afresh but the modal buffers (no allocation once warm).
-    ModalAnchor modal = std::move(s.modal);
-    s = Side{};
-    s.modal = std::move(modal);
+    // Field by field rather than s = Side{}: the modal anchor keeps its buffers (modal_anchor() refills
+    // them), so a warm step allocates nothing, and a row's sides are cheap to remake.
+    s.m = nullptr;
+    s.p = nullptr;
+    s.v = nullptr;
+    s.r = Vec3{};
+    s.inv_inertia = Mat3{};
+    s.inv_mass = 0.0;
     if (e.is_null() || !bodies.valid(e)) {
         s.point = local;
         modal_anchor(nullptr, Quat{}, local, h, false, s.modal); // the world has no modes: empties it

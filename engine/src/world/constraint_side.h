@@ -9,6 +9,7 @@
 namespace supermodal
 {
 
+/// make_side() sets every field in place (a new field needs setting there too).
 struct Side {
     const BodyModel* m = nullptr;
     const Pose* p = nullptr;

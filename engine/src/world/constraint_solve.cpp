@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
-#include <utility>
 
 namespace supermodal
 {
@@ -284,15 +283,6 @@ bool prepare(Row& r, Registry& bodies, double h)
     return true;
 }
 
-// A fresh row that keeps its sides' modal buffers, so modal rows allocate nothing once warm.
-void reset_row(Row& r)
-{
-    Side a = std::move(r.a), b = std::move(r.b);
-    r = Row{};
-    r.a = std::move(a);
-    r.b = std::move(b);
-}
-
 // The island node of a side: its body when the row's pushes change it (velocity or modes), else none.
 uint32_t island_node(const Side& s, Entity body)
 {
@@ -317,7 +307,8 @@ size_t prepare_rows(double h, Registry& bodies, ConstraintWorld& cw, ConstraintS
         if (st.broken)
             continue;
         Row& r = scratch.rows[n];
-        reset_row(r);
+        // The sides are made afresh by prepare() in place, keeping their modal buffers.
+        static_cast<ConstraintRowTerms&>(r) = ConstraintRowTerms{};
         r.id = ce;
         r.model = &cw.reg.get<ConstraintModel>(ce);
         r.state = &st;
