@@ -21,6 +21,7 @@ struct ConstraintRowTerms {
     Entity id{};
     const ConstraintModel* model = nullptr; ///< In the constraint registry, fixed while the world steps.
     ConstraintState* state = nullptr;
+    bool active = false; ///< Prepared (its bodies exist); an inactive row is skipped.
     Soft soft{};
     double h = 0.0; ///< Substep [s].
     Vec3 gap{};     ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).

@@ -254,7 +254,8 @@ void prepare_limits(Row& r, const ConstraintModel& c, ConstraintState& st)
 }
 
 // Reads the bodies' poses, models and modal amplitudes, never what the rows push (velocities, modal
-// loads): rows can be prepared in any order, before any of them pushes.
+// loads), and writes only the row and its constraint's state: rows can be prepared in any order, on
+// any thread, before any of them pushes.
 bool prepare(Row& r, Registry& bodies, double h)
 {
     const ConstraintModel& c = *r.model;
@@ -289,16 +290,15 @@ uint32_t island_node(const Side& s, Entity body)
     return takes_impulse(s) ? body.index : k_no_node;
 }
 
-// This substep's rows of the unbroken constraints, in entity index order (so the result does not depend
-// on the store's creation/destruction history), and their islands.
-size_t prepare_rows(double h, Registry& bodies, ConstraintWorld& cw, ConstraintScratch& scratch)
+// This substep's rows, one per unbroken constraint in entity index order (so the result does not depend
+// on the store's creation/destruction history), not yet prepared. Returns their count.
+size_t collect_rows(ConstraintWorld& cw, ConstraintScratch& scratch)
 {
     const std::vector<Entity>& stored = cw.reg.store<ConstraintModel>().entities();
     scratch.order.assign(stored.begin(), stored.end());
     std::sort(scratch.order.begin(), scratch.order.end(),
               [](Entity x, Entity y) { return x.index < y.index; });
     scratch.rows.resize(std::max(scratch.rows.size(), scratch.order.size()));
-    scratch.islands.clear();
     size_t n = 0;
     for (Entity ce : scratch.order) {
         ConstraintState& st = cw.reg.get<ConstraintState>(ce);
@@ -306,20 +306,35 @@ size_t prepare_rows(double h, Registry& bodies, ConstraintWorld& cw, ConstraintS
         st.error = ConstraintError{};
         if (st.broken)
             continue;
-        Row& r = scratch.rows[n];
+        Row& r = scratch.rows[n++];
         // The sides are made afresh by prepare() in place, keeping their modal buffers.
         static_cast<ConstraintRowTerms&>(r) = ConstraintRowTerms{};
         r.id = ce;
         r.model = &cw.reg.get<ConstraintModel>(ce);
         r.state = &st;
-        if (prepare(r, bodies, h)) {
-            scratch.islands.add_row(island_node(r.a, r.model->def.a), island_node(r.b, r.model->def.b));
-            ++n;
-        }
-        cw.max_error = std::max(cw.max_error, st.error.linear);
     }
-    scratch.islands.build();
     return n;
+}
+
+// Prepares the rows on any thread (each writes only itself and its constraint's state), then on this
+// one, in row order, the largest error and the islands.
+void prepare_rows(double h, const Parallel& par, Registry& bodies, std::span<Row> rows, ConstraintWorld& cw,
+                  IslandBuilder& islands)
+{
+    par.for_parts(rows.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            rows[i].active = prepare(rows[i], bodies, h);
+    });
+    islands.clear();
+    for (const Row& r : rows) {
+        cw.max_error = std::max(cw.max_error, r.state->error.linear);
+        // An inactive row pushes nothing: an island of its own, skipped.
+        if (r.active)
+            islands.add_row(island_node(r.a, r.model->def.a), island_node(r.b, r.model->def.b));
+        else
+            islands.add_row(k_no_node, k_no_node);
+    }
+    islands.build();
 }
 
 // Warm start and every pass of one island, its rows in their global order: as the serial loop over all
@@ -327,10 +342,13 @@ size_t prepare_rows(double h, Registry& bodies, ConstraintWorld& cw, ConstraintS
 void solve_island(Row* rows, std::span<const uint32_t> island, int iterations)
 {
     for (uint32_t i : island)
-        warm_start(rows[i]);
+        if (rows[i].active)
+            warm_start(rows[i]);
     for (int pass = 0; pass < iterations; ++pass)
         for (uint32_t i : island) {
             Row& r = rows[i];
+            if (!r.active)
+                continue;
             if (r.has_mass)
                 solve_linear(r, r.model->def);
             solve_angular(r);
@@ -343,6 +361,8 @@ void solve_island(Row* rows, std::span<const uint32_t> island, int iterations)
 void finish_rows(double h, std::span<Row> rows, ConstraintWorld& cw)
 {
     for (Row& r : rows) {
+        if (!r.active)
+            continue;
         ConstraintState& st = *r.state;
         // A spring that would need more than its break force snaps instead of pulling: its impulses
         // are taken back, so the parts fly apart with the momentum they had.
@@ -366,16 +386,18 @@ void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Regist
                              ConstraintWorld& cw, ConstraintScratch& scratch)
 {
     cw.max_error = 0.0;
-    const size_t n = prepare_rows(ctx.h, bodies, cw, scratch);
+    const size_t n = collect_rows(cw, scratch);
+    const std::span<Row> rows(scratch.rows.data(), n);
+    prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands);
     const IslandBuilder& islands = scratch.islands;
     // Parts by row count (an island is never split), at most one per island.
     const size_t parts = std::min(par.part_count(n, k_min_rows_per_part), islands.island_count());
     par.for_parts(parts, 1, [&](size_t part, size_t, size_t) {
         const auto [first, last] = islands.islands_of_part(part, parts);
         for (size_t i = first; i < last; ++i)
-            solve_island(scratch.rows.data(), islands.island(i), cw.iterations);
+            solve_island(rows.data(), islands.island(i), cw.iterations);
     });
-    finish_rows(ctx.h, std::span<Row>(scratch.rows.data(), n), cw);
+    finish_rows(ctx.h, rows, cw);
 }
 
 } // namespace supermodal

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The constraint stage: the penalty springs of every constraint act on the bodies they join.
 //
-// Threads: rows are prepared on the stepping thread in constraint index order, then grouped into islands
-// (world/islands.h) of rows that share a body their impulses change; each island is warm-started and
-// solved on one thread, its rows in that same order, and breaking and write-back follow serially. Rows
-// of different islands share no written state, so results are bit-identical for any thread count.
+// Threads: one row per constraint in constraint index order, each prepared on any thread (it reads the
+// bodies and writes only itself), then grouped into islands (world/islands.h) of rows that share a body
+// their impulses change; each island is warm-started and solved on one thread, its rows in that same
+// order, and breaking and write-back follow serially. Rows of different islands share no written state,
+// so results are bit-identical for any thread count.
 #pragma once
 
 #include "constraints/constraint_world.h"
