@@ -5,17 +5,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace supermodal
 {
 namespace
 {
 
-// φ_k at a rest point [1/√kg], shape frame, every mode.
-void mode_field(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& out)
+// φ_k at a rest point [1/√kg], shape frame: one slot of `out` per mode.
+void mode_field(const ModalBasis& basis, const Vec3& point, std::span<Vec3> out)
 {
-    const size_t r = static_cast<size_t>(basis.mode_count);
-    out.assign(r, Vec3{});
+    const size_t r = out.size();
+    std::fill(out.begin(), out.end(), Vec3{});
     const LatticeWeights lw = modal_weights(basis, point);
     for (int j = 0; j < lw.count; ++j) {
         const double* node = &basis.mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
@@ -27,10 +28,16 @@ void mode_field(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& o
 
 // ψ_k = ½∇×φ_k at a rest point [rad/(√kg·m)], shape frame. Central differences a ten-thousandth of a
 // cell apart (the field is a low-order polynomial inside a cell), one-sided at the lattice box.
-void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& out)
+// `work` holds the three gradients and the two fields of a difference (kept by the anchor).
+void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>& work,
+                   std::vector<Vec3>& out)
 {
     const size_t r = static_cast<size_t>(basis.mode_count);
-    std::vector<Vec3> grad[3], lo_f, hi_f; // grad[j][k] = ∂φ_k/∂x_j
+    work.assign(5 * r, Vec3{});
+    const std::span<Vec3> all(work);
+    const std::span<Vec3> grad[3] = {all.subspan(0, r), all.subspan(r, r),
+                                     all.subspan(2 * r, r)}; // ∂φ_k/∂x_j
+    const std::span<Vec3> lo_f = all.subspan(3 * r, r), hi_f = all.subspan(4 * r, r);
     for (int j = 0; j < 3; ++j) {
         const double box_lo = basis.lattice_min[j];
         const double box_hi = box_lo + basis.cells[j] * basis.cell_size[j];
@@ -41,7 +48,6 @@ void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>
         hi[j] = std::min(box_hi, c + delta);
         mode_field(basis, lo, lo_f);
         mode_field(basis, hi, hi_f);
-        grad[j].assign(r, Vec3{});
         const double span = hi[j] - lo[j];
         if (span > 0.0)
             for (size_t k = 0; k < r; ++k)
@@ -53,14 +59,30 @@ void mode_rotation(const ModalBasis& basis, const Vec3& point, std::vector<Vec3>
             0.5 * Vec3{grad[1][k].z - grad[2][k].y, grad[2][k].x - grad[0][k].z, grad[0][k].y - grad[1][k].x};
 }
 
-Mat3 sum_outer(const std::vector<Vec3>& v, const std::vector<double>& weight)
+// Σ (gain_k/h) v_k v_kᵀ.
+Mat3 sum_outer(const std::vector<Vec3>& v, const std::vector<double>& gain, double h)
 {
     Mat3 m;
-    for (size_t k = 0; k < v.size(); ++k)
+    for (size_t k = 0; k < v.size(); ++k) {
+        const double weight = gain[k] / h;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
-                m.m[i][j] += weight[k] * v[k][i] * v[k][j];
+                m.m[i][j] += weight * v[k][i] * v[k][j];
+    }
     return m;
+}
+
+// Empties an anchor but keeps its buffers, so anchors made every substep allocate nothing once warm.
+void clear_anchor(ModalAnchor& a)
+{
+    a.body = nullptr;
+    a.phi.clear();
+    a.psi.clear();
+    a.drift.clear();
+    a.gain.clear();
+    a.h = 0.0;
+    a.displacement = Vec3{};
+    a.rotation = Vec3{};
 }
 
 // The map ModalUpdate will use for mode k over h (update_modal_bodies): central difference below its
@@ -91,15 +113,16 @@ modal::ModeStep mode_map(const ModalBody& b, size_t k, double h)
 bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bool with_rotation,
                   ModalAnchor& out)
 {
-    out = ModalAnchor{};
+    clear_anchor(out);
     if (b == nullptr || !is_finite(local) || !(h > 0.0))
         return false;
     out.h = h;
     const ModalBasis& basis = *b->model->basis;
     const ModalState& st = b->state;
+    out.phi.assign(static_cast<size_t>(basis.mode_count), Vec3{});
     mode_field(basis, local, out.phi);
     if (with_rotation)
-        mode_rotation(basis, local, out.psi);
+        mode_rotation(basis, local, out.work, out.psi);
     const size_t r = out.phi.size();
     out.drift.resize(r);
     out.gain.resize(r);
@@ -118,7 +141,7 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
         out.gain[k] = s.b1 / h;
     }
     if (!is_finite(out.displacement) || !is_finite(out.rotation)) {
-        out = ModalAnchor{};
+        clear_anchor(out);
         return false;
     }
     out.body = b;
@@ -143,18 +166,12 @@ Vec3 modal_anchor_spin(const ModalAnchor& a)
 
 Mat3 modal_anchor_inverse_mass(const ModalAnchor& a)
 {
-    std::vector<double> w(a.gain.size());
-    for (size_t k = 0; k < w.size(); ++k)
-        w[k] = a.gain[k] / a.h;
-    return sum_outer(a.phi, w);
+    return sum_outer(a.phi, a.gain, a.h);
 }
 
 Mat3 modal_anchor_inverse_inertia(const ModalAnchor& a)
 {
-    std::vector<double> w(a.gain.size());
-    for (size_t k = 0; k < w.size(); ++k)
-        w[k] = a.gain[k] / a.h;
-    return sum_outer(a.psi, w);
+    return sum_outer(a.psi, a.gain, a.h);
 }
 
 void modal_anchor_push(ModalAnchor& a, const Vec3& impulse, const Vec3& angular_impulse)

@@ -27,6 +27,7 @@ struct ModalAnchor {
     double h = 0.0;            ///< Substep [s].
     Vec3 displacement{};       ///< R·Φ(x)q over all modes [m].
     Vec3 rotation{};           ///< R·Ψ(x)q over all modes [rad] (with psi).
+    std::vector<Vec3> work;    ///< Scratch of the ψ differences, kept so a reused anchor allocates nothing.
 
     [[nodiscard]] bool active() const { return body != nullptr; }
 };

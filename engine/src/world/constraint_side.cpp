@@ -45,12 +45,20 @@ bool invert(const Mat3& a, Mat3& out)
     return true;
 }
 
-Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation)
+void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& s)
 {
-    Side s;
+    // Field by field rather than s = Side{}: the modal anchor keeps its buffers (modal_anchor() refills
+    // them), so a warm step allocates nothing, and a row's sides are cheap to remake.
+    s.m = nullptr;
+    s.p = nullptr;
+    s.v = nullptr;
+    s.r = Vec3{};
+    s.inv_inertia = Mat3{};
+    s.inv_mass = 0.0;
     if (e.is_null() || !bodies.valid(e)) {
         s.point = local;
-        return s;
+        modal_anchor(nullptr, Quat{}, local, h, false, s.modal); // the world has no modes: empties it
+        return;
     }
     s.m = &bodies.get<BodyModel>(e);
     s.p = &bodies.get<Pose>(e);
@@ -67,7 +75,6 @@ Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     } else if (s.m->motion == MotionType::Kinematic) {
         s.v = &bodies.get<Velocity>(e); // moves, but takes no impulse (inv_mass 0)
     }
-    return s;
 }
 
 Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h)

@@ -9,6 +9,7 @@
 namespace supermodal
 {
 
+/// make_side() sets every field in place (a new field needs setting there too).
 struct Side {
     const BodyModel* m = nullptr;
     const Pose* p = nullptr;
@@ -20,9 +21,9 @@ struct Side {
     ModalAnchor modal; ///< The modes at the anchor (modal bodies only).
 };
 
-/// The side of body e (null: the world, `local` a world point) at shape-frame anchor `local`.
-/// `with_rotation`: the modes' rotation at the anchor is needed too (welds).
-[[nodiscard]] Side make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation);
+/// Makes `out` the side of body e (null: the world, `local` a world point) at shape-frame anchor `local`,
+/// reusing out's modal buffers. `with_rotation`: the modes' rotation at the anchor is needed too (welds).
+void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& out);
 /// The side of body e at a contact point x [m], world, already on the (deformed) surface: as make_side,
 /// with the modes evaluated at x's rest position and no rotation.
 [[nodiscard]] Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h);
@@ -38,6 +39,12 @@ struct Side {
 void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse);
 /// An angular impulse on the rigid body only (joint limits, joint friction).
 void push_rigid_spin(Side& s, const Vec3& angular_impulse);
+/// Whether push() and push_rigid_spin() change anything on this side: a dynamic body's velocity or a
+/// modal body's loads. The world and static or kinematic bodies only feed their motion in.
+[[nodiscard]] inline bool takes_impulse(const Side& s)
+{
+    return (s.v != nullptr && s.inv_mass != 0.0) || s.modal.active();
+}
 /// K = anchor velocity change of a relative to b per unit impulse [1/kg] (rigid and modal).
 [[nodiscard]] Mat3 point_mass_inverse(const Side& a, const Side& b);
 /// Spin change of b relative to a per unit angular impulse [1/(kg·m²)] (rigid and modal).

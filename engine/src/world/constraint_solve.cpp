@@ -6,13 +6,13 @@
 // a light part between heavy ones cannot blow up; a few Gauss–Seidel passes over all constraints let
 // chains carry loads (a heavy part hanging below a light one) without the light part's mass limiting
 // the stiffness, as an explicit penalty spring would.
-#include "dynamics/soft_constraint.h"
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
 #include "world/integrate.h"
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace supermodal
 {
@@ -55,36 +55,7 @@ Quat orientation_of(const Side& s)
 // Joint limits start acting this far before the limit [rad] (speculatively, see solve_angular).
 constexpr double k_limit_margin = 0.1;
 
-using Soft = SoftCoefficients;
-
-// One constraint prepared for this substep's velocity passes: positions stay fixed meanwhile.
-struct Row {
-    Entity id{};
-    Side a, b;
-    Soft soft{};
-    double h = 0.0; ///< Substep [s].
-    Vec3 gap{};     ///< Anchor a − anchor b [m] (point, weld) or n·(len − rest) (distance).
-    Vec3 normal{};  ///< Distance: unit a − b.
-    Mat3 mass{};    ///< Point/weld: K⁻¹ [kg]; distance: m_eff on the diagonal.
-    bool has_mass = false;
-    Vec3 impulse{}; ///< Accumulated linear impulse on a this substep [N·s].
-    // Angular parts: weld (3-D) or up to two one-sided limit rows (axis, excess).
-    Vec3 theta{};    ///< Weld error rotation vector [rad], world.
-    Mat3 ang_mass{}; ///< Weld: (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
-    bool has_ang_mass = false;
-    Vec3 ang_impulse{}; ///< Accumulated angular impulse on b [N·m·s].
-    // Limit slots: 0 swing, 1 twist.
-    bool limit_active[2]{};
-    Vec3 limit_axis[2]{};      ///< Unit world axes of violated limits.
-    double limit_excess[2]{};  ///< [rad], > 0 when violated.
-    double limit_mass[2]{};    ///< [kg·m²].
-    double limit_impulse[2]{}; ///< Accumulated, ≥ 0 (pushes back only) [N·m·s].
-    // Joint friction: relative spin + compliance·impulse = 0, solved with the other rows.
-    bool has_friction = false;
-    Mat3 friction_compliance{}; ///< (h·C)⁻¹ [1/(kg·m²)], C the friction coefficient [N·m·s].
-    Mat3 friction_mass{};       ///< (Ia⁻¹ + Ib⁻¹ + (h·C)⁻¹)⁻¹ [kg·m²].
-    Vec3 friction_impulse{};    ///< Accumulated angular impulse on b [N·m·s].
-};
+using Row = ConstraintRow;
 
 // Applies the row's accumulated impulses times `sign` (−1 takes them back).
 void apply_row(Row& r, double sign)
@@ -150,8 +121,10 @@ void solve_angular(Row& r)
 
 // The last substep's impulses, applied first: over substeps they converge to the load a spring carries,
 // so chains hold without many passes (Box2D's warm starting).
-void warm_start(Row& r, const ConstraintState& st, const ConstraintDef& d)
+void warm_start(Row& r)
 {
+    const ConstraintState& st = *r.state;
+    const ConstraintDef& d = r.model->def;
     if (r.has_mass)
         r.impulse = d.type == ConstraintType::Distance ? dot(st.impulse, r.normal) * r.normal : st.impulse;
     if (r.has_ang_mass)
@@ -270,13 +243,18 @@ void prepare_limits(Row& r, const ConstraintModel& c, ConstraintState& st)
     }
 }
 
-bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bodies, double h)
+// Reads the bodies' poses, models and modal amplitudes, never what the rows push (velocities, modal
+// loads), and writes only the row and its constraint's state: rows can be prepared in any order, on
+// any thread, before any of them pushes.
+bool prepare(Row& r, Registry& bodies, double h)
 {
+    const ConstraintModel& c = *r.model;
+    ConstraintState& st = *r.state;
     const ConstraintDef& d = c.def;
     // A weld holds the material's orientation at the anchors, so it needs the modes' rotation there.
     const bool weld = d.type == ConstraintType::Weld;
-    r.a = make_side(bodies, d.a, c.local_a, h, weld);
-    r.b = make_side(bodies, d.b, c.local_b, h, weld);
+    make_side(bodies, d.a, c.local_a, h, weld, r.a);
+    make_side(bodies, d.b, c.local_b, h, weld, r.b);
     if (r.a.m == nullptr)
         return false;
     r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
@@ -291,52 +269,97 @@ bool prepare(Row& r, const ConstraintModel& c, ConstraintState& st, Registry& bo
     } else if (d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0)) {
         prepare_limits(r, c, st);
     }
-    warm_start(r, st, d);
     if (d.angular_damping > 0.0)
         setup_friction(r, d.angular_damping, h);
     return true;
 }
 
-} // namespace
-
-void apply_constraint_forces(const StepContext& ctx, Registry& bodies, ConstraintWorld& cw, ExtraPass extra)
+// The island node of a side: its body when the row's pushes change it (velocity or modes), else none.
+uint32_t island_node(const Side& s, Entity body)
 {
-    cw.max_error = 0.0;
-    const double h = ctx.h;
-    // Index order, so the result does not depend on the store's creation/destruction history.
-    std::vector<Entity> order = cw.reg.store<ConstraintModel>().entities();
-    std::sort(order.begin(), order.end(), [](Entity x, Entity y) { return x.index < y.index; });
-    std::vector<Row> rows;
-    rows.reserve(order.size());
-    for (Entity ce : order) {
-        const ConstraintModel& c = cw.reg.get<ConstraintModel>(ce);
+    return takes_impulse(s) ? body.index : k_no_node;
+}
+
+// This substep's rows, one per unbroken constraint in entity index order (so the result does not depend
+// on the store's creation/destruction history), not yet prepared. Returns their count.
+size_t collect_rows(ConstraintWorld& cw, ConstraintScratch& scratch)
+{
+    const std::vector<Entity>& stored = cw.reg.store<ConstraintModel>().entities();
+    scratch.order.assign(stored.begin(), stored.end());
+    std::sort(scratch.order.begin(), scratch.order.end(),
+              [](Entity x, Entity y) { return x.index < y.index; });
+    scratch.rows.resize(std::max(scratch.rows.size(), scratch.order.size()));
+    size_t n = 0;
+    for (Entity ce : scratch.order) {
         ConstraintState& st = cw.reg.get<ConstraintState>(ce);
         st.force_on_a = Vec3{};
         st.error = ConstraintError{};
         if (st.broken)
             continue;
-        Row r;
+        Row& r = scratch.rows[n++];
+        // The sides are made afresh by prepare() in place, keeping their modal buffers.
+        static_cast<ConstraintRowTerms&>(r) = ConstraintRowTerms{};
         r.id = ce;
-        if (prepare(r, c, st, bodies, h))
-            rows.push_back(r);
-        cw.max_error = std::max(cw.max_error, st.error.linear);
+        r.model = &cw.reg.get<ConstraintModel>(ce);
+        r.state = &st;
     }
-    for (int pass = 0; pass < cw.iterations; ++pass) {
-        for (Row& r : rows) {
-            const ConstraintDef& d = cw.reg.get<ConstraintModel>(r.id).def;
-            if (r.has_mass)
-                solve_linear(r, d);
-            solve_angular(r);
-            solve_friction(r);
-        }
-        if (extra.fn != nullptr)
-            extra.fn(extra.ctx);
+    return n;
+}
+
+// Prepares the rows on any thread (each writes only itself and its constraint's state), then on this
+// one, in row order, the largest error and the islands.
+void prepare_rows(double h, const Parallel& par, Registry& bodies, std::span<Row> rows, ConstraintWorld& cw,
+                  IslandBuilder& islands)
+{
+    par.for_parts(rows.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            rows[i].active = prepare(rows[i], bodies, h);
+    });
+    islands.clear();
+    for (const Row& r : rows) {
+        cw.max_error = std::max(cw.max_error, r.state->error.linear);
+        // An inactive row pushes nothing: an island of its own, skipped.
+        if (r.active)
+            islands.add_row(island_node(r.a, r.model->def.a), island_node(r.b, r.model->def.b));
+        else
+            islands.add_row(k_no_node, k_no_node);
     }
+    islands.build();
+}
+
+// One Gauss–Seidel update of an active row.
+void solve_row(Row& r)
+{
+    if (r.has_mass)
+        solve_linear(r, r.model->def);
+    solve_angular(r);
+    solve_friction(r);
+}
+
+// Warm start and every pass of one island, its rows in their global order: as the serial loop over all
+// rows does to each of the island's bodies, since no other row touches them.
+void solve_island(Row* rows, std::span<const uint32_t> island, int iterations)
+{
+    for (uint32_t i : island)
+        if (rows[i].active)
+            warm_start(rows[i]);
+    for (int pass = 0; pass < iterations; ++pass)
+        for (uint32_t i : island)
+            if (rows[i].active)
+                solve_row(rows[i]);
+}
+
+// On the stepping thread in row order: breaks, then the impulses become the state that warm-starts the
+// next substep.
+void finish_rows(double h, std::span<Row> rows, ConstraintWorld& cw)
+{
     for (Row& r : rows) {
-        ConstraintState& st = cw.reg.get<ConstraintState>(r.id);
+        if (!r.active)
+            continue;
+        ConstraintState& st = *r.state;
         // A spring that would need more than its break force snaps instead of pulling: its impulses
         // are taken back, so the parts fly apart with the momentum they had.
-        if (length(r.impulse) > h * cw.reg.get<ConstraintModel>(r.id).def.break_force) {
+        if (length(r.impulse) > h * r.model->def.break_force) {
             apply_row(r, -1.0);
             st = ConstraintState{.broken = true, .error = st.error};
             ++cw.broken_count;
@@ -348,6 +371,46 @@ void apply_constraint_forces(const StepContext& ctx, Registry& bodies, Constrain
         st.limit_impulse[0] = r.limit_impulse[0] * r.limit_axis[0];
         st.limit_impulse[1] = r.limit_impulse[1] * r.limit_axis[1];
     }
+}
+
+// With rows of another kind in the same passes (`extra`, which may touch any body), every row on this
+// thread: warm starts, then each pass over all islands' rows in row order and then over the extra rows.
+void solve_with_extra(std::span<Row> rows, int iterations, ExtraPass extra)
+{
+    for (Row& r : rows)
+        if (r.active)
+            warm_start(r);
+    for (int pass = 0; pass < iterations; ++pass) {
+        for (Row& r : rows)
+            if (r.active)
+                solve_row(r);
+        extra.fn(extra.ctx);
+    }
+}
+
+} // namespace
+
+void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Registry& bodies,
+                             ConstraintWorld& cw, ConstraintScratch& scratch, ExtraPass extra)
+{
+    cw.max_error = 0.0;
+    const size_t n = collect_rows(cw, scratch);
+    const std::span<Row> rows(scratch.rows.data(), n);
+    prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands);
+    if (extra.fn != nullptr) {
+        solve_with_extra(rows, cw.iterations, extra);
+        finish_rows(ctx.h, rows, cw);
+        return;
+    }
+    const IslandBuilder& islands = scratch.islands;
+    // Parts by row count (an island is never split), at most one per island.
+    const size_t parts = std::min(par.part_count(n, k_min_rows_per_part), islands.island_count());
+    par.for_parts(parts, 1, [&](size_t part, size_t, size_t) {
+        const auto [first, last] = islands.islands_of_part(part, parts);
+        for (size_t i = first; i < last; ++i)
+            solve_island(rows.data(), islands.island(i), cw.iterations);
+    });
+    finish_rows(ctx.h, rows, cw);
 }
 
 } // namespace supermodal

@@ -350,8 +350,8 @@ void restitute_soft_contacts(SoftContacts& io)
 void finish_soft_contacts(const StepContext& ctx, ContactWorld& io)
 {
     const SoftContacts& rows = io.soft;
-    std::vector<PairAnchor> anchors;
-    anchors.reserve(rows.pairs.size());
+    std::vector<PairAnchor>& anchors = io.next_anchors;
+    anchors.clear();
     for (const SoftPair& sp : rows.pairs) {
         const BodyPair& pair = io.pairs[sp.pair];
         double normal = 0.0;

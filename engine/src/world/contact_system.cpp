@@ -205,8 +205,10 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
 
 void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io)
 {
-    std::vector<PairManifold> old_manifolds;
+    // Double-buffered, so a warm substep allocates no manifold list.
+    std::vector<PairManifold>& old_manifolds = io.old_manifolds;
     old_manifolds.swap(io.manifolds);
+    io.manifolds.clear();
     io.pair_manifold.resize(io.pairs.size());
     io.part_points.resize(par.part_capacity());
     for (std::vector<ContactPoint>& points : io.part_points)
@@ -339,8 +341,9 @@ void compute_pair_forces(const PenaltyParams& params, const StepContext& ctx, Re
 // events.
 void sum_pair_forces(const StepContext& ctx, Registry& reg, ContactWorld& io, StepWarnings& io_warnings)
 {
-    std::vector<PairAnchor> anchors;
-    anchors.reserve(io.anchors.size());
+    // Double-buffered, so a warm substep allocates no anchor list.
+    std::vector<PairAnchor>& anchors = io.next_anchors;
+    anchors.clear();
     for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
         const PairForce& pf = io.pair_force[pi];
         if (!pf.touching)

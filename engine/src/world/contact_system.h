@@ -36,6 +36,8 @@ struct ContactWorld {
     std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
     std::vector<PairManifold> manifolds;     ///< State: support-map pairs' points, sorted by key.
     std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
+    std::vector<PairManifold> old_manifolds; ///< Scratch: last substep's, read while making new ones.
+    std::vector<PairAnchor> next_anchors;    ///< Scratch: this substep's anchors while they are made.
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].

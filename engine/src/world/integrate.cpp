@@ -88,10 +88,11 @@ void integrate_forces(const StepContext& ctx, const Parallel& par, Registry& reg
 }
 
 void integrate_positions(const StepContext& ctx, const Parallel& par, Registry& reg,
-                         StepWarnings& io_warnings)
+                         IntegrateScratch& scratch, StepWarnings& io_warnings)
 {
     // Each body writes only its own pose and velocity; the fallbacks are counted per part, summed after.
-    std::vector<uint64_t> fallbacks(par.part_capacity(), 0);
+    std::vector<uint64_t>& fallbacks = scratch.fallbacks;
+    fallbacks.assign(par.part_capacity(), 0);
     par.for_parts(reg.store<BodyModel>().size(), k_min_bodies_per_part,
                   [&](size_t part, size_t begin, size_t end) {
                       reg.each_in<BodyModel, Velocity, Pose>(
@@ -116,12 +117,13 @@ void store_previous_poses(const Parallel& par, Registry& reg)
 }
 
 void freeze_non_finite(const StepContext& ctx, Stage stage, const Parallel& par, Registry& reg,
-                       StepWarnings& io_warnings)
+                       IntegrateScratch& scratch, StepWarnings& io_warnings)
 {
     // Looked for on any thread, each part noting its first bad body; frozen on this thread in store
     // order, so the fault log's order does not depend on threads. A clean substep reads every body once.
     const std::vector<Entity>& bodies = reg.store<BodyModel>().entities();
-    std::vector<size_t> first_bad(par.part_capacity(), bodies.size());
+    std::vector<size_t>& first_bad = scratch.first_bad;
+    first_bad.assign(par.part_capacity(), bodies.size());
     par.for_parts(bodies.size(), k_min_bodies_per_part, [&](size_t part, size_t begin, size_t end) {
         for (size_t i = begin; i < end && first_bad[part] == bodies.size(); ++i)
             if (!body_finite(reg.get<Velocity>(bodies[i]), reg.get<Pose>(bodies[i])))

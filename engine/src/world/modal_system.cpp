@@ -436,7 +436,7 @@ uint8_t step_modal_body(double h, ModalBody& b)
 
 } // namespace
 
-void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg,
+void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg, ModalScratch& scratch,
                          StepWarnings& io_warnings)
 {
     // The shared maps first, on this thread. Then each body on any thread writes only its own amplitudes
@@ -444,7 +444,8 @@ void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& 
     // depends on threads.
     prepare_modal_substep(reg, ctx.h);
     std::vector<ModalBody>& bodies = reg.store<ModalBody>().values();
-    std::vector<uint8_t> flags(bodies.size(), 0);
+    std::vector<uint8_t>& flags = scratch.flags;
+    flags.assign(bodies.size(), 0);
     par.for_parts(bodies.size(), 1, [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i)
             flags[i] = step_modal_body(ctx.h, bodies[i]);
@@ -497,12 +498,14 @@ void update_modal_surface(ModalBody& b)
     b.deformed.stale = false;
 }
 
-void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs)
+void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs,
+                           ModalScratch& scratch)
 {
     if (reg.store<ModalBody>().size() == 0)
         return;
     // Each stale body once (a body is in several pairs), then each on any thread: it writes only itself.
-    std::vector<ModalBody*> stale;
+    std::vector<ModalBody*>& stale = scratch.stale;
+    stale.clear();
     for (const BodyPair& pair : pairs)
         for (Entity e : {pair.a, pair.b})
             if (ModalBody* b = reg.find<ModalBody>(e); b != nullptr && b->deformed.stale) {

@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace supermodal
 {
@@ -53,14 +54,21 @@ void prepare_modal_substep(Registry& reg, double h);
 /// An impulse J [N·s] at a world point changes the rates at once: q̇ += φ(x_local)ᵀ Rᵀ J.
 void modal_add_point_impulse(Registry& reg, Entity e, const Vec3& world_point, const Vec3& impulse);
 
+/// Buffers of the stages below, kept between substeps.
+struct ModalScratch {
+    std::vector<uint8_t> flags;    ///< update_modal_bodies: per modal body, what its step reported.
+    std::vector<ModalBody*> stale; ///< update_modal_surfaces: bodies whose samples are to move.
+};
+
 /// ModalUpdate stage: steps every modal body's amplitudes over ctx.h under this substep's loads and the
 /// host loads, then clears the substep's loads.
-void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg,
+void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& reg, ModalScratch& scratch,
                          StepWarnings& io_warnings);
 /// UpdateSurfaces stage: moves the contact samples of the modal bodies in `pairs` (the only ones the
 /// narrowphase will read) by their current amplitudes, if these moved since. Others stay stale until they
 /// join a pair: call it again after the broadphase.
-void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs);
+void update_modal_surfaces(const Parallel& par, Registry& reg, std::span<const BodyPair> pairs,
+                           ModalScratch& scratch);
 /// Moves one modal body's samples (after creation, set_body_modal_state, restore).
 void update_modal_surface(ModalBody& body);
 /// Clears host generalized forces once a step has used them.

@@ -128,7 +128,7 @@ void World::Impl::step()
         profile.pair_count = contact.pairs.size();
     });
     // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
-    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     StepContext ctx = make_step_context(def);
@@ -143,7 +143,7 @@ void World::Impl::step()
         faults.substep = i;
         run(Stage::IntegrateForces, [&] {
             integrate_forces(ctx, parallel, reg);
-            freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, warnings);
+            freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, scratch.integrate, warnings);
         });
         run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
         if (def.contact.solver == ContactSolver::Soft) {
@@ -153,16 +153,17 @@ void World::Impl::step()
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
-            apply_constraint_forces(ctx, reg, constraints);
-            freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+            apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints);
+            freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
             update_contact_anchors(ctx, reg, parallel, contact);
         });
-        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, warnings); });
+        run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
         run(Stage::IntegratePositions, [&] {
-            integrate_positions(ctx, parallel, reg, warnings);
-            freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, warnings);
+            integrate_positions(ctx, parallel, reg, scratch.integrate, warnings);
+            freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, scratch.integrate, warnings);
         });
-        run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
+        run(Stage::UpdateSurfaces,
+            [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     }
     run(Stage::Events, [&] {
         clear_forces(reg);
@@ -189,12 +190,12 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
         const ExtraPass pass{[](void* rows) { solve_soft_contacts(*static_cast<SoftContacts*>(rows), true); },
                              &contact.soft};
-        apply_constraint_forces(ctx, reg, constraints, pass);
-        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+        apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints, pass);
+        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::IntegratePositions, [&] {
-        integrate_positions(ctx, parallel, reg, warnings);
-        freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, warnings);
+        integrate_positions(ctx, parallel, reg, scratch.integrate, warnings);
+        freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::PenaltyForces, [&] {
         advance_soft_separations(contact.soft);
@@ -202,10 +203,10 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
             solve_soft_contacts(contact.soft, false);
         restitute_soft_contacts(contact.soft);
         finish_soft_contacts(ctx, contact);
-        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, warnings);
+        freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
-    run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, warnings); });
-    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
+    run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
+    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
 }
 
 void World::step()

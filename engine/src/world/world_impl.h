@@ -6,10 +6,20 @@
 #include "core/parallel.h"
 #include "supermodal/world.h"
 #include "world/components.h"
+#include "world/constraint_system.h"
 #include "world/contact_system.h"
+#include "world/integrate.h"
+#include "world/modal_system.h"
 
 namespace supermodal
 {
+
+/// Buffers the step's stages keep from substep to substep, so a warm step allocates nothing.
+struct StepScratch {
+    IntegrateScratch integrate;
+    ModalScratch modal;
+    ConstraintScratch constraints;
+};
 
 struct World::Impl {
     WorldDef def{};
@@ -31,6 +41,7 @@ struct World::Impl {
     bool locked = false;               ///< True inside step(): mutations assert.
     std::shared_ptr<TaskSystem> tasks; ///< The host's task system, the built-in pool, or null (one thread).
     Parallel parallel;                 ///< The step's loops over `tasks`.
+    StepScratch scratch;               ///< The stages' reusable buffers.
 
     void step();
     /// A substep's solve with the soft contact solver (after the narrowphase); `run` times the stages.
