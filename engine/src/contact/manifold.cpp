@@ -161,9 +161,11 @@ void reduce(std::vector<Candidate>& pts, const Vec3& n)
 }
 
 // Merges fresh candidates with the surviving old points, reduces to capacity, stores, and appends the
-// touching points with equal weights.
+// touching points with equal weights (and, with `speculative`, the kept points not touching, with
+// weight 0 and their gap as a negative depth).
 int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, std::vector<Candidate>& old,
-           const Vec3& n, double merge, bool flip, PairManifold& io, std::vector<ContactPoint>& out)
+           const Vec3& n, double merge, bool flip, bool speculative, PairManifold& io,
+           std::vector<ContactPoint>& out)
 {
     for (const Candidate& c : old)
         add_unique(fresh, c, merge);
@@ -178,12 +180,15 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
     for (const Candidate& c : fresh)
         if (c.depth > 0.0)
             out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching, 1.0});
-    return touching;
+        else if (speculative)
+            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 0.0, 1.0});
+    return speculative ? static_cast<int>(fresh.size()) : touching;
 }
 
 } // namespace
 
-int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out)
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
+                     bool speculative)
 {
     const MprResult mpr = mpr_penetration(a, b);
     if (!mpr.hit) {
@@ -239,11 +244,11 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
                 add_unique(fresh, {p - d * n, p, d}, merge);
             return d >= min_depth;
         });
-    return finish(a, &b, fresh, old, n, merge, false, io, out);
+    return finish(a, &b, fresh, old, n, merge, false, speculative, io, out);
 }
 
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
-                           std::vector<ContactPoint>& out)
+                           std::vector<ContactPoint>& out, bool speculative)
 {
     // The plane's support along −n is exact: no MPR. Depths are exact for every material point.
     const Vec3 n = normalized(plane.collider->shape.plane_normal);
@@ -261,9 +266,10 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
         if (c.depth > -k_separate_rel * r)
             old.push_back(c);
     }
-    // The support point is the body's deepest: when it is out, every point is.
+    // The support point is the body's deepest: when it is out (by more than the kept gap, speculative),
+    // every point is.
     const Candidate deepest = candidate(body_support(body, -n));
-    if (!(deepest.depth > 0.0)) {
+    if (!(deepest.depth > (speculative ? -k_separate_rel * r : 0.0))) {
         io.count = 0;
         return 0;
     }
@@ -276,7 +282,7 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
                 add_unique(fresh, c, merge);
             return deep;
         });
-    return finish(body, nullptr, fresh, old, n, merge, !body_is_a, io, out);
+    return finish(body, nullptr, fresh, old, n, merge, !body_is_a, speculative, io, out);
 }
 
 } // namespace supermodal

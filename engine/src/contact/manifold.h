@@ -35,13 +35,17 @@ struct PairManifold {
 };
 
 /// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
-/// points (normal from B towards A, weights summing to 1). Returns the number appended.
+/// points (normal from B towards A, weights summing to 1). With `speculative`, also its kept points that
+/// do not touch (gap < 2% of the smaller smallest radius), with weight 0 and depth −gap: a solver that
+/// stops an approach before it closes keeps a resting face on all its corners. Returns the number
+/// appended.
 int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io_manifold,
-                     std::vector<ContactPoint>& out_points);
+                     std::vector<ContactPoint>& out_points, bool speculative = false);
 
 /// Same for a convex body against a plane: the manifold's A is always the body; normals are flipped
 /// for the output when body_is_a is false (as collide_plane).
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
-                           PairManifold& io_manifold, std::vector<ContactPoint>& out_points);
+                           PairManifold& io_manifold, std::vector<ContactPoint>& out_points,
+                           bool speculative = false);
 
 } // namespace supermodal

@@ -45,6 +45,8 @@ struct SoftPair {
     double friction = 0.0;    ///< μ [-].
     double restitution = 0.0; ///< e [-].
     double rolling = 0.0;     ///< Rolling lever arm ℓ [m] (0: no rolling row).
+    Vec3 stick{};             ///< Tangential slip since the pair last slid [m], world (static friction).
+    bool sliding = false;     ///< Friction reached the Coulomb disc this substep.
     Mat3 roll_mass{};         ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
     Vec3 roll_impulse{};      ///< Accumulated angular impulse on a [N·m·s].
 };
@@ -64,7 +66,8 @@ struct SoftContacts {
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);
 /// One Gauss–Seidel pass over the rows; with use_bias the springs push overlaps apart.
 void solve_soft_contacts(SoftContacts& io, bool use_bias);
-/// After the positions moved with the solved velocities: each point's gap as it is now.
+/// After the positions moved with the solved velocities: each point's gap as it is now, and each
+/// sticking pair's slip.
 void advance_soft_separations(SoftContacts& io);
 /// The bounce: points that closed faster than restitution_speed leave at e times that speed.
 void restitute_soft_contacts(SoftContacts& io);

@@ -49,9 +49,9 @@ bool box_above_plane(const Aabb& box, const ShapeDef& plane)
 
 // The narrowphase of one pair, appended to out_points; boxes holds each body's world box this substep.
 // Support-map pairs (MPR + persistent manifold) carry their old manifold over by key into out_manifold.
-void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPair& pair, ContactPath path,
-                  const std::vector<PairManifold>& old_manifolds, PairManifold& out_manifold,
-                  std::vector<ContactPoint>& out_points)
+void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPair& pair,
+                  const ContactDef& def, const std::vector<PairManifold>& old_manifolds,
+                  PairManifold& out_manifold, std::vector<ContactPoint>& out_points)
 {
     out_manifold = PairManifold{.key = pair.key()};
     const BodyModel& ma = reg.get<BodyModel>(pair.a);
@@ -63,17 +63,19 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
         return;
     const BodyView a{ma.collider.get(), pa.position, pa.orientation, plane_a ? Aabb{} : boxes[pair.a.index]};
     const BodyView b{mb.collider.get(), pb.position, pb.orientation, plane_b ? Aabb{} : boxes[pair.b.index]};
-    if (use_support_map(path, *ma.collider, *mb.collider)) {
+    // The soft solver takes the manifold's points that do not touch yet too (it stops their approach).
+    const bool speculative = def.solver == ContactSolver::Soft;
+    if (use_support_map(def.path, *ma.collider, *mb.collider)) {
         auto it = std::lower_bound(old_manifolds.begin(), old_manifolds.end(), pair.key(),
                                    [](const PairManifold& x, uint64_t k) { return x.key < k; });
         if (it != old_manifolds.end() && it->key == pair.key())
             out_manifold = *it;
         if (plane_b)
-            collide_manifold_plane(a, b, true, out_manifold, out_points);
+            collide_manifold_plane(a, b, true, out_manifold, out_points, speculative);
         else if (plane_a)
-            collide_manifold_plane(b, a, false, out_manifold, out_points);
+            collide_manifold_plane(b, a, false, out_manifold, out_points, speculative);
         else if (overlaps(a.box, b.box))
-            collide_manifold(a, b, out_manifold, out_points);
+            collide_manifold(a, b, out_manifold, out_points, speculative);
         else
             out_manifold.count = 0;
         return;
@@ -228,7 +230,7 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
         std::vector<ContactPoint>& points = io.part_points[part];
         for (size_t pi = begin; pi < end; ++pi) {
             const auto first = static_cast<uint32_t>(points.size());
-            collide_pair(reg, io.boxes, io.pairs[pi], def.contact.path, old_manifolds, io.pair_manifold[pi],
+            collide_pair(reg, io.boxes, io.pairs[pi], def.contact, old_manifolds, io.pair_manifold[pi],
                          points);
             io.pair_points[pi] = {static_cast<uint32_t>(part), first, static_cast<uint32_t>(points.size())};
         }
