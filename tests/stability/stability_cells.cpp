@@ -161,6 +161,7 @@ CellResult run_cell(const CellDef& def)
     CellResult out;
     out.accepted = true;
     WorldDef wd = default_world_def();
+    wd.contact.solver = def.solver;
     BodyDef body = default_body_def();
     body.restitution = def.restitution;
     double settle_seconds = 0.0;
@@ -186,6 +187,7 @@ CellResult run_cell(const CellDef& def)
     case Scene::Impact:
         wd.dt = k_impact_dt;
         wd.contact.frequency_hz = def.frequency_hz;
+        wd.contact.soft.frequency_hz = def.frequency_hz;
         body.shape.radii = {0.1, 0.1, 0.1};
         body.position = {0.0, 0.15, 0.0};
         body.linear_velocity = {0.0, -def.speed, 0.0};
