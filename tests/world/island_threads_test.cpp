@@ -4,6 +4,7 @@
 // state hash for any thread count and for a host scheduler that runs the parts backwards.
 #include "supermodal/body.h"
 #include "supermodal/constraint.h"
+#include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "supermodal/tasks.h"
 #include "supermodal/world.h"
@@ -107,11 +108,26 @@ void add_joined(sm::World& w)
     }
 }
 
+// Soft contact: the floor, and small piles of boxes beside the chains, so contact rows join the islands
+// (the joined modal ball rests on the floor through its joints).
+void add_floor_and_piles(sm::World& w)
+{
+    (void)sm::test::add_ground(w);
+    for (int i = 0; i < 36; ++i) {
+        sm::BodyDef box = sm::test::ellipsoid_def(
+            {0.04, 0.04, 0.04}, {0.5 + 0.1 * (i % 3), 0.05 + 0.09 * (i / 9), -0.5 + 0.1 * ((i / 3) % 3)});
+        box.shape.epsilon1 = box.shape.epsilon2 = i % 2 == 0 ? 0.3 : 1.0;
+        (void)sm::create_body(w, box);
+    }
+}
+
 uint64_t run(int threads, const std::shared_ptr<sm::ModalBasisCache>& cache,
-             std::shared_ptr<sm::TaskSystem> tasks = {})
+             std::shared_ptr<sm::TaskSystem> tasks = {}, bool soft = false)
 {
     sm::WorldDef def = sm::default_world_def();
     def.dt = 1.0 / 240.0;
+    if (soft)
+        def.contact.solver = sm::ContactSolver::Soft;
     def.thread_count = threads;
     def.task_system = std::move(tasks);
     def.modal_basis_cache = cache;
@@ -123,8 +139,13 @@ uint64_t run(int threads, const std::shared_ptr<sm::ModalBasisCache>& cache,
     for (const sm::ConstraintDef& d : add_chains(w, beam))
         EXPECT_FALSE(sm::create_constraint(w, d).is_null());
     add_joined(w);
+    if (soft)
+        add_floor_and_piles(w);
     sm::test::run_steps(w, 120);
     EXPECT_EQ(sm::world_broken_constraints(w), 1u); // chain 7's weak joint, on any thread
+    if (soft) {
+        EXPECT_GT(sm::world_contacts(w).size(), 20u); // the piles touch, or the test proves nothing
+    }
     return w.state_hash();
 }
 
@@ -149,4 +170,13 @@ TEST(IslandThreads, SameHashForAnyThreadCountAndScheduler)
     for (int threads : {2, 3, 8})
         EXPECT_EQ(run(threads, cache), one) << threads << " threads";
     EXPECT_EQ(run(1, cache, std::make_shared<ReverseOrderTasks>()), one);
+}
+
+TEST(IslandThreads, SoftContactRowsJoinTheIslandsWithTheSameHash)
+{
+    const auto cache = std::make_shared<sm::ModalBasisCache>();
+    const uint64_t one = run(1, cache, {}, true);
+    for (int threads : {2, 3, 8})
+        EXPECT_EQ(run(threads, cache, {}, true), one) << threads << " threads";
+    EXPECT_EQ(run(1, cache, std::make_shared<ReverseOrderTasks>(), true), one);
 }

@@ -309,7 +309,7 @@ size_t collect_rows(ConstraintWorld& cw, ConstraintScratch& scratch)
 // Prepares the rows on any thread (each writes only itself and its constraint's state), then on this
 // one, in row order, the largest error and the islands.
 void prepare_rows(double h, const Parallel& par, Registry& bodies, std::span<Row> rows, ConstraintWorld& cw,
-                  IslandBuilder& islands)
+                  IslandBuilder& islands, const ExtraRows& extra)
 {
     par.for_parts(rows.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i)
@@ -324,6 +324,11 @@ void prepare_rows(double h, const Parallel& par, Registry& bodies, std::span<Row
         else
             islands.add_row(k_no_node, k_no_node);
     }
+    for (size_t i = 0; i < extra.count; ++i) {
+        uint32_t a = k_no_node, b = k_no_node;
+        extra.nodes(extra.ctx, i, a, b);
+        islands.add_row(a, b);
+    }
     islands.build();
 }
 
@@ -336,17 +341,33 @@ void solve_row(Row& r)
     solve_friction(r);
 }
 
-// Warm start and every pass of one island, its rows in their global order: as the serial loop over all
-// rows does to each of the island's bodies, since no other row touches them.
-void solve_island(Row* rows, std::span<const uint32_t> island, int iterations)
+// Warm start and every pass of one island, its rows in their global order (the constraints', then the
+// extra rows'): as the serial loop over all rows does to each of the island's bodies, since no other
+// row touches them.
+void solve_island(Row* rows, size_t row_count, std::span<const uint32_t> island, int iterations,
+                  const ExtraRows& extra)
 {
     for (uint32_t i : island)
-        if (rows[i].active)
+        if (i < row_count && rows[i].active)
             warm_start(rows[i]);
     for (int pass = 0; pass < iterations; ++pass)
-        for (uint32_t i : island)
-            if (rows[i].active)
+        for (uint32_t i : island) {
+            if (i >= row_count)
+                extra.solve(extra.ctx, i - row_count);
+            else if (rows[i].active)
                 solve_row(rows[i]);
+        }
+}
+
+// fn(island) for every island, on the parts of `par` (an island is never split).
+template <class Fn> void for_islands(const Parallel& par, const IslandBuilder& islands, size_t rows, Fn&& fn)
+{
+    const size_t parts = std::min(par.part_count(rows, k_min_rows_per_part), islands.island_count());
+    par.for_parts(parts, 1, [&](size_t part, size_t, size_t) {
+        const auto [first, last] = islands.islands_of_part(part, parts);
+        for (size_t i = first; i < last; ++i)
+            fn(islands.island(i));
+    });
 }
 
 // On the stepping thread in row order: breaks, then the impulses become the state that warm-starts the
@@ -373,44 +394,32 @@ void finish_rows(double h, std::span<Row> rows, ConstraintWorld& cw)
     }
 }
 
-// With rows of another kind in the same passes (`extra`, which may touch any body), every row on this
-// thread: warm starts, then each pass over all islands' rows in row order and then over the extra rows.
-void solve_with_extra(std::span<Row> rows, int iterations, ExtraPass extra)
-{
-    for (Row& r : rows)
-        if (r.active)
-            warm_start(r);
-    for (int pass = 0; pass < iterations; ++pass) {
-        for (Row& r : rows)
-            if (r.active)
-                solve_row(r);
-        extra.fn(extra.ctx);
-    }
-}
-
 } // namespace
 
 void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Registry& bodies,
-                             ConstraintWorld& cw, ConstraintScratch& scratch, ExtraPass extra)
+                             ConstraintWorld& cw, ConstraintScratch& scratch, ExtraRows extra)
 {
     cw.max_error = 0.0;
     const size_t n = collect_rows(cw, scratch);
+    scratch.row_count = n;
     const std::span<Row> rows(scratch.rows.data(), n);
-    prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands);
-    if (extra.fn != nullptr) {
-        solve_with_extra(rows, cw.iterations, extra);
-        finish_rows(ctx.h, rows, cw);
-        return;
-    }
-    const IslandBuilder& islands = scratch.islands;
-    // Parts by row count (an island is never split), at most one per island.
-    const size_t parts = std::min(par.part_count(n, k_min_rows_per_part), islands.island_count());
-    par.for_parts(parts, 1, [&](size_t part, size_t, size_t) {
-        const auto [first, last] = islands.islands_of_part(part, parts);
-        for (size_t i = first; i < last; ++i)
-            solve_island(rows.data(), islands.island(i), cw.iterations);
+    prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands, extra);
+    for_islands(par, scratch.islands, n + extra.count, [&](std::span<const uint32_t> island) {
+        solve_island(rows.data(), n, island, cw.iterations, extra);
     });
     finish_rows(ctx.h, rows, cw);
+}
+
+void solve_extra_rows(const Parallel& par, const ConstraintScratch& scratch, size_t extra_count, int passes,
+                      void (*fn)(void* ctx, size_t i), void* ctx)
+{
+    const size_t n = scratch.row_count;
+    for_islands(par, scratch.islands, n + extra_count, [&](std::span<const uint32_t> island) {
+        for (int pass = 0; pass < passes; ++pass)
+            for (uint32_t i : island)
+                if (i >= n)
+                    fn(ctx, i - n);
+    });
 }
 
 } // namespace supermodal

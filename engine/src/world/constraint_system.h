@@ -24,20 +24,30 @@ namespace supermodal
 struct ConstraintScratch {
     std::vector<Entity> order;       ///< Constraints by entity index.
     std::vector<ConstraintRow> rows; ///< This substep's rows, in `order`.
-    IslandBuilder islands;           ///< Islands of `rows`.
+    IslandBuilder islands;           ///< Islands of `rows` (and the extra rows after them).
+    size_t row_count = 0;            ///< Constraint rows of the last substep; extra rows follow.
 };
 
-/// Rows of another kind solved in the same Gauss–Seidel passes (the soft contacts): after each pass over
-/// the constraints, fn(ctx) runs one pass over them.
-struct ExtraPass {
-    void (*fn)(void* ctx) = nullptr;
+/// Rows of another kind solved in the same Gauss–Seidel passes (the soft contacts). Row i joins the
+/// islands through the bodies nodes(i) names (k_no_node for an end no impulse changes) and is solved,
+/// after its island's constraint rows in every pass, by solve(i); rows of different islands run on
+/// different threads, so solve(i) must write only row i and its two bodies.
+struct ExtraRows {
+    size_t count = 0;
+    void (*nodes)(void* ctx, size_t i, uint32_t& out_a, uint32_t& out_b) = nullptr;
+    void (*solve)(void* ctx, size_t i) = nullptr;
     void* ctx = nullptr;
 };
 
 /// The springs' forces into velocities for one substep; updates errors and breaks. Per island through
-/// `par`; with `extra`, whose rows may join any island, every row on this thread.
+/// `par`; with `extra`, its rows join the islands and every pass.
 void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Registry& bodies,
-                             ConstraintWorld& cw, ConstraintScratch& scratch, ExtraPass extra = {});
+                             ConstraintWorld& cw, ConstraintScratch& scratch, ExtraRows extra = {});
+
+/// More passes over the extra rows alone, island by island on the islands of the last
+/// apply_constraint_forces (which must have had the same extra rows): fn(ctx, i) once per pass and row.
+void solve_extra_rows(const Parallel& par, const ConstraintScratch& scratch, size_t extra_count, int passes,
+                      void (*fn)(void* ctx, size_t i), void* ctx);
 
 /// Fewest rows worth a thread part: below this, waking a worker costs more than the passes save.
 inline constexpr size_t k_min_rows_per_part = 32;

@@ -3,6 +3,7 @@
 
 #include "dynamics/step_context.h"
 #include "world/contact_system.h"
+#include "world/islands.h"
 #include "world/modal_system.h"
 
 #include <algorithm>
@@ -157,6 +158,7 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
     sp.restitution = std::max(ma.restitution, mb.restitution);
     sp.rolling = std::max(ma.rolling_resistance, mb.rolling_resistance);
     const double omega = pair_omega(def.soft, h, ma.inv_mass == 0.0 || mb.inv_mass == 0.0);
+    sp.node_a = sp.node_b = k_no_node;
     const PairAnchor* old = find_pair_anchor(cw.anchors, pair.key());
     std::array<uint32_t, k_max_rows_per_pair> picked{};
     sp.count = static_cast<uint32_t>(pick_rows(points, has_flat_faces(ma) || has_flat_faces(mb), picked));
@@ -173,6 +175,11 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
         p.tangent_impulse[1] = w * h * dot(old->friction_load, p.tangent[1]);
         apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
                      p.tangent_impulse[1] * p.tangent[1]);
+    }
+    if (sp.count > 0) {
+        const SoftPoint& first = rows.points[sp.first];
+        sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
+        sp.node_b = takes_impulse(first.b) ? pair.b.index : k_no_node;
     }
     if (old != nullptr && sp.count > 0) {
         const Vec3 n = rows.points[sp.first].normal;
@@ -334,10 +341,22 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Regist
         prepare_pair(def, reg, io, sp, ctx.h);
 }
 
-void solve_soft_contacts(SoftContacts& io, bool use_bias)
+ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias)
 {
-    for (SoftPair& sp : io.pairs)
-        solve_pair(sp, io, use_bias);
+    auto nodes = [](void* ctx, size_t i, uint32_t& a, uint32_t& b) {
+        const SoftPair& sp = static_cast<SoftContacts*>(ctx)->pairs[i];
+        a = sp.node_a;
+        b = sp.node_b;
+    };
+    auto biased = [](void* ctx, size_t i) {
+        auto& rows = *static_cast<SoftContacts*>(ctx);
+        solve_pair(rows.pairs[i], rows, true);
+    };
+    auto relaxed = [](void* ctx, size_t i) {
+        auto& rows = *static_cast<SoftContacts*>(ctx);
+        solve_pair(rows.pairs[i], rows, false);
+    };
+    return {.count = rows.pairs.size(), .nodes = nodes, .solve = use_bias ? +biased : +relaxed, .ctx = &rows};
 }
 
 void advance_soft_separations(SoftContacts& io)
@@ -361,24 +380,24 @@ void advance_soft_separations(SoftContacts& io)
     }
 }
 
-void restitute_soft_contacts(SoftContacts& io)
+void restitute_soft_pair(void* rows, size_t pair)
 {
-    for (SoftPair& sp : io.pairs) {
-        if (sp.restitution == 0.0)
+    SoftContacts& io = *static_cast<SoftContacts*>(rows);
+    const SoftPair& sp = io.pairs[pair];
+    if (sp.restitution == 0.0)
+        return;
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        SoftPoint& p = io.points[sp.first + i];
+        // A deforming body bounces through its modes; the point's approach speed includes their
+        // ringing, and a bounce target on it pumped a modal ball to 3.3× its drop energy (measured).
+        if (p.approach > -io.restitution_speed || p.normal_impulse == 0.0 || p.a.modal.active() ||
+            p.b.modal.active())
             continue;
-        for (uint32_t i = 0; i < sp.count; ++i) {
-            SoftPoint& p = io.points[sp.first + i];
-            // A deforming body bounces through its modes; the point's approach speed includes their
-            // ringing, and a bounce target on it pumped a modal ball to 3.3× its drop energy (measured).
-            if (p.approach > -io.restitution_speed || p.normal_impulse == 0.0 || p.a.modal.active() ||
-                p.b.modal.active())
-                continue;
-            const double vn = dot(relative_velocity(p), p.normal);
-            const double d = -p.normal_mass * (vn + sp.restitution * p.approach);
-            const double total = std::max(p.normal_impulse + d, 0.0);
-            apply(p, (total - p.normal_impulse) * p.normal);
-            p.normal_impulse = total;
-        }
+        const double vn = dot(relative_velocity(p), p.normal);
+        const double d = -p.normal_mass * (vn + sp.restitution * p.approach);
+        const double total = std::max(p.normal_impulse + d, 0.0);
+        apply(p, (total - p.normal_impulse) * p.normal);
+        p.normal_impulse = total;
     }
 }
 

@@ -12,6 +12,7 @@
 #include "dynamics/soft_constraint.h"
 #include "supermodal/contact.h"
 #include "world/constraint_side.h"
+#include "world/constraint_system.h"
 
 #include <vector>
 
@@ -42,6 +43,8 @@ struct SoftPair {
     uint32_t pair = 0;        ///< Index into ContactWorld::pairs.
     uint32_t first = 0;       ///< First point in SoftContacts::points.
     uint32_t count = 0;       ///< Points.
+    uint32_t node_a = 0;      ///< Island node of a (its entity index), k_no_node if no impulse moves it.
+    uint32_t node_b = 0;      ///< The same for b.
     double friction = 0.0;    ///< μ [-].
     double restitution = 0.0; ///< e [-].
     double rolling = 0.0;     ///< Rolling lever arm ℓ [m] (0: no rolling row).
@@ -64,13 +67,13 @@ struct SoftContacts {
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);
-/// One Gauss–Seidel pass over the rows; with use_bias the springs push overlaps apart.
-void solve_soft_contacts(SoftContacts& io, bool use_bias);
+/// The rows as the constraint solver's extra rows (one per pair), with or without the push-out.
+[[nodiscard]] ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias);
+/// Pair i's bounce (see restitute_soft_contacts), for solve_extra_rows.
+void restitute_soft_pair(void* rows, size_t i);
 /// After the positions moved with the solved velocities: each point's gap as it is now, and each
 /// sticking pair's slip.
 void advance_soft_separations(SoftContacts& io);
-/// The bounce: points that closed faster than restitution_speed leave at e times that speed.
-void restitute_soft_contacts(SoftContacts& io);
 /// The pairs' loads into their anchors (warm starting), contacts, events and the deepest overlap.
 void finish_soft_contacts(const StepContext& ctx, ContactWorld& io);
 

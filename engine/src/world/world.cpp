@@ -188,9 +188,8 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
     run(Stage::PenaltyForces, [&] {
         prepare_soft_contacts(def.contact, ctx, reg, contact);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
-        const ExtraPass pass{[](void* rows) { solve_soft_contacts(*static_cast<SoftContacts*>(rows), true); },
-                             &contact.soft};
-        apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints, pass);
+        apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints,
+                                soft_contact_rows(contact.soft, true));
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::IntegratePositions, [&] {
@@ -199,9 +198,11 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
     });
     run(Stage::PenaltyForces, [&] {
         advance_soft_separations(contact.soft);
-        for (int i = 0; i < def.contact.soft.iterations; ++i)
-            solve_soft_contacts(contact.soft, false);
-        restitute_soft_contacts(contact.soft);
+        // The islands of the solve above: the relax and the bounce touch the same bodies.
+        const ExtraRows relax = soft_contact_rows(contact.soft, false);
+        solve_extra_rows(parallel, scratch.constraints, relax.count, def.contact.soft.iterations, relax.solve,
+                         relax.ctx);
+        solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair, &contact.soft);
         finish_soft_contacts(ctx, contact);
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
