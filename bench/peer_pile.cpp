@@ -164,7 +164,7 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"all", "supermodal", "bullet"}));
     app.add_option("--csv", o.csv, "Write the table as CSV here");
     app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
-    app.add_option("--solver", solver, "supermodal contact solver (penalty)");
+    app.add_option("--solver", solver, "supermodal contact solver (penalty or soft)");
     CLI11_PARSE(app, argc, argv);
     o.timed_steps = std::min(o.timed_steps, o.steps);
     for (const std::string& kv : sets)
