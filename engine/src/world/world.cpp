@@ -124,6 +124,7 @@ void World::Impl::step()
     int substeps = def.substep_count;
     run(Stage::Broadphase, [&] {
         non_colliding_pairs(constraints, contact.excluded_pairs);
+        wake_jointed(constraints, reg, contact);
         substeps = update_pairs(def, reg, contact);
         profile.pair_count = contact.pairs.size();
     });
@@ -172,6 +173,8 @@ void World::Impl::step()
         if (faults.callback != nullptr)
             for (const FaultEvent& f : faults.events)
                 faults.callback(f, faults.user_data);
+        // After the events, so a pair that falls asleep keeps its touch record parked, not ended.
+        profile.sleeping_count = update_sleep(def, reg, contact, constraints, scratch.sleep);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;
@@ -259,8 +262,10 @@ Status World::set_settings(const WorldDef& def)
         return Error{"", "modal_basis_cache", "cannot change after creation"};
     if (def.dt != w.def.dt && w.step_count > 0)
         return Error{"", "dt", "can change only before the first step (time is step_count * dt)"};
-    // The step reads the settings afresh each time, so changing them between steps is safe.
+    // The step reads the settings afresh each time, so changing them between steps is safe. Sleeping
+    // bodies rested under the old ones (gravity, sleep limits): they wake to feel the new.
     w.def = def;
+    wake_every_body(w.reg, w.contact);
     return {};
 }
 
