@@ -27,11 +27,12 @@ class TaskSystem;      // supermodal/tasks.h
 /// under these; an island of touching or jointed dynamic bodies that have all been slow for `time`
 /// sleeps: it is neither integrated nor collided until something wakes it.
 struct SleepDef {
-    bool enabled = true;         ///< False: no body ever sleeps (and sleeping ones wake).
-    double linear_speed = 0.05;  ///< [m/s], ≥ 0: centre-of-mass speed below which a body is slow; a
-                                 ///< modal body's modes also need √(|q̇|²/m) under it (their energy).
-    double angular_speed = 0.05; ///< [rad/s], ≥ 0.
-    double time = 0.5;           ///< [s], > 0: how long an island stays slow before it sleeps.
+    bool enabled = true;        ///< False: no body ever sleeps (and sleeping ones wake).
+    double linear_speed = 0.05; ///< [m/s], ≥ 0: a body is slow while |v| + ρ·|ω| (ρ: its largest
+                                ///< radius, so the speed of its fastest point) stays under it; a modal
+                                ///< body's modes also need √(|q̇|²/m) under it (their kinetic energy).
+    double angular_speed = 1.0; ///< [rad/s], ≥ 0: and |ω| under this (small bodies turning in place).
+    double time = 0.5;          ///< [s], > 0: how long an island stays slow before it sleeps.
 };
 
 /// How to make a world. Start from default_world_def() and change what differs.

@@ -177,13 +177,16 @@ void settle_sleeping_pairs(Registry& reg, ContactWorld& io)
 namespace
 {
 
-// Slow enough to sleep: both speeds under their limits and, for a modal body, the modes' kinetic energy
-// ½|q̇|² (q̇ in √kg·m/s) under that of the whole body at the linear limit, ½·m·v².
+// Slow enough to sleep: its fastest point, |v| + ρ·|ω| with ρ its largest radius (Box2D v3's rule, so a
+// small body may turn faster than a large one), under the linear limit; |ω| under the angular one; and
+// for a modal body the modes' kinetic energy ½|q̇|² (q̇ in √kg·m/s) under the body's at the linear
+// limit, ½·m·v².
 bool is_slow(const SleepDef& d, const BodyModel& m, const Velocity& v, const ModalBody* modal)
 {
     const double lin2 = d.linear_speed * d.linear_speed;
-    if (!m.allow_sleep || !(dot(v.linear, v.linear) < lin2) ||
-        !(dot(v.angular, v.angular) < d.angular_speed * d.angular_speed))
+    const double spin = length(v.angular);
+    const double reach = std::max({m.shape.radii.x, m.shape.radii.y, m.shape.radii.z});
+    if (!m.allow_sleep || !(length(v.linear) + reach * spin < d.linear_speed) || !(spin < d.angular_speed))
         return false;
     if (modal == nullptr)
         return true;

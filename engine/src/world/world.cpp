@@ -64,6 +64,12 @@ Status validate(const WorldDef& def)
         return Error{"", "constraint_iterations", "expected an integer in [1, 100]"};
     if (def.thread_count < 1 || def.thread_count > k_max_threads)
         return Error{"", "thread_count", "expected an integer in [1, 64]"};
+    if (!(def.sleep.linear_speed >= 0.0) || !std::isfinite(def.sleep.linear_speed))
+        return Error{"", "sleep.linear_speed", "expected a finite speed >= 0 m/s"};
+    if (!(def.sleep.angular_speed >= 0.0) || !std::isfinite(def.sleep.angular_speed))
+        return Error{"", "sleep.angular_speed", "expected a finite angular speed >= 0 rad/s"};
+    if (!(def.sleep.time > 0.0) || !std::isfinite(def.sleep.time))
+        return Error{"", "sleep.time", "expected a finite time > 0 s"};
     return validate_soft(def.contact.soft);
 }
 
