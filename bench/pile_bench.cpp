@@ -264,6 +264,43 @@ void BM_PileSettled(benchmark::State& st, Shape shape)
     st.counters["pairs"] = pairs;
 }
 
+// N rounded boxes (0.05 m) resting apart on the floor, one island each: 2 s to settle and sleep, then
+// 240 steps timed. What a body at rest costs awake against asleep. Arguments: N, sleep (0/1).
+void BM_RestingGrid(benchmark::State& st)
+{
+    const int n = static_cast<int>(st.range(0));
+    double ms = 0.0, cpu_ms = 0.0, sleeping = 0.0;
+    for (auto _ : st) {
+        sm::WorldDef def = sm::default_world_def();
+        def.dt = 1.0 / 240.0;
+        def.sleep.enabled = st.range(1) != 0;
+        sm::World w(def);
+        add_wall(w, {0, 1, 0}, 0.0);
+        const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+        for (int i = 0; i < n; ++i) {
+            sm::BodyDef d = sm::default_body_def();
+            d.shape = pile_shape(Shape::RoundedBox);
+            d.position = {0.15 * (i % side), 0.05, 0.15 * (i / side)};
+            (void)sm::create_body(w, d);
+        }
+        for (int i = 0; i < 480; ++i)
+            w.step();
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        for (int i = 0; i < k_timed_steps; ++i)
+            w.step();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        st.SetIterationTime(seconds);
+        ms = 1e3 * seconds / k_timed_steps;
+        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        sleeping = static_cast<double>(sm::world_sleeping_count(w));
+    }
+    st.counters["ms_per_step"] = ms;
+    st.counters["cpu_ms_per_step"] = cpu_ms;
+    st.counters["sleeping"] = sleeping;
+}
+
 void settled_args(benchmark::internal::Benchmark* b)
 {
     for (int speed_mm_s : {0, 50, 150})
@@ -274,6 +311,12 @@ void settled_args(benchmark::internal::Benchmark* b)
 } // namespace
 
 BENCHMARK_CAPTURE(BM_PileSettled, ellipsoid, Shape::Ellipsoid)->Apply(settled_args);
+BENCHMARK(BM_RestingGrid)
+    ->Args({1000, 0})
+    ->Args({1000, 1})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Pile, sphere, Shape::Sphere)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);
