@@ -8,7 +8,12 @@
 //
 // The floor and the four walls are static half-spaces (planes) at the inner faces of the 0.1 m thick
 // walls of the protocol: the same for everything inside the box, and nothing inside can tunnel
-// through a half-space. Arguments: N, threads, substeps per step.
+// through a half-space. Arguments: N, threads, substeps per step. These runs keep every body awake
+// (WorldDef::sleep off), so they measure the step itself.
+//
+// BM_PileSettled: the pile stepped k_settle_steps (10 s) with sleeping on or off, then timed over
+// k_timed_steps: the cost of a pile at rest, awake against asleep. Arguments: N, sleep speed
+// (SleepDef::linear_speed [mm/s]; 0: sleeping off).
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
 #include "supermodal/tasks.h"
@@ -26,11 +31,12 @@ namespace sm = supermodal;
 namespace
 {
 
-constexpr double k_pitch = 0.2;    // grid pitch [m]
-constexpr int k_layers = 10;       // grid layers [-]
-constexpr double k_jitter = 0.02;  // ± jitter of each grid position [m], a tenth of the pitch
-constexpr int k_steps = 720;       // whole run [-]
-constexpr int k_timed_steps = 240; // measured at the end [-]
+constexpr double k_pitch = 0.2;      // grid pitch [m]
+constexpr int k_layers = 10;         // grid layers [-]
+constexpr double k_jitter = 0.02;    // ± jitter of each grid position [m], a tenth of the pitch
+constexpr int k_steps = 720;         // whole run [-]
+constexpr int k_timed_steps = 240;   // measured at the end [-]
+constexpr int k_settle_steps = 2400; // BM_PileSettled: steps before the timed ones (10 s) [-]
 
 // CPU time of the whole process [s]: on a shared machine the one-thread cost, unlike wall time, does
 // not count the time other jobs held the core.
@@ -125,9 +131,12 @@ void add_wall(sm::World& w, sm::Vec3 normal, double offset)
     (void)sm::create_body(w, d);
 }
 
-sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps)
+sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps,
+                    double sleep_speed = 0.0)
 {
     sm::WorldDef def = sm::default_world_def();
+    def.sleep.enabled = sleep_speed > 0.0;
+    def.sleep.linear_speed = sleep_speed;
     def.dt = 1.0 / 240.0;
     def.substep_count = substeps;
     def.task_system = tasks;
@@ -228,8 +237,86 @@ void substep_args(benchmark::internal::Benchmark* b)
     b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
+void BM_PileSettled(benchmark::State& st, Shape shape)
+{
+    const int n = static_cast<int>(st.range(0));
+    const double sleep_speed = 1e-3 * static_cast<double>(st.range(1));
+    double ms = 0.0, cpu_ms = 0.0, sleeping = 0.0, pairs = 0.0;
+    for (auto _ : st) {
+        sm::World w = make_pile(shape, n, std::make_shared<TimedTasks>(1), 1, sleep_speed);
+        for (int i = 0; i < k_settle_steps; ++i)
+            w.step();
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        for (int i = 0; i < k_timed_steps; ++i)
+            w.step();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        st.SetIterationTime(seconds);
+        ms = 1e3 * seconds / k_timed_steps;
+        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        sleeping = static_cast<double>(sm::world_sleeping_count(w));
+        pairs = static_cast<double>(w.profile().pair_count);
+    }
+    st.counters["ms_per_step"] = ms;
+    st.counters["cpu_ms_per_step"] = cpu_ms;
+    st.counters["sleeping"] = sleeping; // bodies asleep at the end
+    st.counters["pairs"] = pairs;
+}
+
+// N rounded boxes (0.05 m) resting apart on the floor, one island each: 2 s to settle and sleep, then
+// 240 steps timed. What a body at rest costs awake against asleep. Arguments: N, sleep (0/1).
+void BM_RestingGrid(benchmark::State& st)
+{
+    const int n = static_cast<int>(st.range(0));
+    double ms = 0.0, cpu_ms = 0.0, sleeping = 0.0;
+    for (auto _ : st) {
+        sm::WorldDef def = sm::default_world_def();
+        def.dt = 1.0 / 240.0;
+        def.sleep.enabled = st.range(1) != 0;
+        sm::World w(def);
+        add_wall(w, {0, 1, 0}, 0.0);
+        const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+        for (int i = 0; i < n; ++i) {
+            sm::BodyDef d = sm::default_body_def();
+            d.shape = pile_shape(Shape::RoundedBox);
+            d.position = {0.15 * (i % side), 0.05, 0.15 * (i / side)};
+            (void)sm::create_body(w, d);
+        }
+        for (int i = 0; i < 480; ++i)
+            w.step();
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        for (int i = 0; i < k_timed_steps; ++i)
+            w.step();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        st.SetIterationTime(seconds);
+        ms = 1e3 * seconds / k_timed_steps;
+        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        sleeping = static_cast<double>(sm::world_sleeping_count(w));
+    }
+    st.counters["ms_per_step"] = ms;
+    st.counters["cpu_ms_per_step"] = cpu_ms;
+    st.counters["sleeping"] = sleeping;
+}
+
+void settled_args(benchmark::internal::Benchmark* b)
+{
+    for (int speed_mm_s : {0, 50, 150})
+        b->Args({1000, speed_mm_s});
+    b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
 } // namespace
 
+BENCHMARK_CAPTURE(BM_PileSettled, ellipsoid, Shape::Ellipsoid)->Apply(settled_args);
+BENCHMARK(BM_RestingGrid)
+    ->Args({1000, 0})
+    ->Args({1000, 1})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Pile, sphere, Shape::Sphere)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);

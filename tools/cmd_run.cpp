@@ -259,6 +259,7 @@ nlohmann::json run_summary(const RunOptions& opt, const World& world, long long 
             {"substeps", world.settings().substep_count},
             {"threads", world.settings().thread_count},
             {"body_count", bodies.size()},
+            {"sleeping", world_sleeping_count(world)}, // bodies asleep at the end
             {"state_hash", hex(world.state_hash())},
             {"ms_per_step", step_timing(rec.step_ms, steps)},
             {"stage_ms_mean", stages},

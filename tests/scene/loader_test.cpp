@@ -272,6 +272,38 @@ TEST(SceneLoaderErrors, ContactSolverSettingsNameTheirPointer)
                          "/settings/contact/soft/frequenzy", "did you mean \"frequency\"?"));
 }
 
+TEST(SceneLoader, SleepSettingsAndBodyOptOut)
+{
+    const sm::Result<sm::Scene> off = sm::parse_scene(R"({"settings": {"sleep": false}})", "t.json");
+    ASSERT_TRUE(off) << off.error().message();
+    EXPECT_FALSE(off->world.sleep.enabled);
+    const sm::Result<sm::Scene> on = sm::parse_scene(
+        R"({"settings": {"sleep": {"linear_speed": 0.1, "angular_speed": 2, "time": 1.5}},
+            "bodies": [{"name": "b", "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.1]},
+                        "sleep": false}]})",
+        "t.json");
+    ASSERT_TRUE(on) << on.error().message();
+    EXPECT_TRUE(on->world.sleep.enabled);
+    EXPECT_EQ(on->world.sleep.linear_speed, 0.1);
+    EXPECT_EQ(on->world.sleep.angular_speed, 2.0);
+    EXPECT_EQ(on->world.sleep.time, 1.5);
+    EXPECT_FALSE(on->bodies[0].def.allow_sleep);
+}
+
+TEST(SceneLoaderErrors, SleepSettingsNameTheirPointer)
+{
+    EXPECT_TRUE(fails_at(R"({"settings": {"sleep": 1}})", "/settings/sleep", "expected an object"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"sleep": {"enabled": "yes"}}})", "/settings/sleep/enabled",
+                         "expected true or false"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"sleep": {"time": 0}}})", "/settings/sleep/time",
+                         "expected a number > 0, found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"sleep": {"linear_sped": 0.1}}})", "/settings/sleep/linear_sped",
+                         "did you mean \"linear_speed\"?"));
+    EXPECT_TRUE(fails_at(R"({"bodies": [{"name": "b", "shape": {"type": "superquadric", "radii": [1, 1, 1]},
+                                          "sleep": 0}]})",
+                         "/bodies/0/sleep", "expected true or false"));
+}
+
 TEST(SceneLoaderErrors, UnknownMaterialListsTheMaterials)
 {
     EXPECT_TRUE(fails_at(one_body(R"("material": "oak",)"), "/bodies/0/material",

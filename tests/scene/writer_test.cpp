@@ -80,6 +80,7 @@ void compare_body(Diff& d, const sm::SceneBody& a, const sm::SceneBody& b, const
     d.vec(x.linear_velocity, y.linear_velocity, w + ".linear_velocity");
     d.vec(x.angular_velocity, y.angular_velocity, w + ".angular_velocity");
     d.num(x.gravity_scale, y.gravity_scale, w + ".gravity_scale");
+    d.check(x.allow_sleep == y.allow_sleep, w + ".allow_sleep");
     d.num(x.friction, y.friction, w + ".friction");
     d.num(x.restitution, y.restitution, w + ".restitution");
     d.check(x.modal.enabled == y.modal.enabled, w + ".modal.enabled");
@@ -134,6 +135,10 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
     d.check(x.max_steps_per_advance == y.max_steps_per_advance, "max_steps_per_advance");
     d.check(x.constraint_iterations == y.constraint_iterations, "constraint_iterations");
     d.check(x.thread_count == y.thread_count, "thread_count");
+    d.check(x.sleep.enabled == y.sleep.enabled, "sleep.enabled");
+    d.num(x.sleep.linear_speed, y.sleep.linear_speed, "sleep.linear_speed");
+    d.num(x.sleep.angular_speed, y.sleep.angular_speed, "sleep.angular_speed");
+    d.num(x.sleep.time, y.sleep.time, "sleep.time");
     d.check(x.contact.enabled == y.contact.enabled, "contact.enabled");
     d.check(x.contact.path == y.contact.path, "contact.path");
     d.num(x.contact.frequency_hz, y.contact.frequency_hz, "contact.frequency_hz");
@@ -227,7 +232,8 @@ std::string every_field_scene()
                              "push_out_speed": 1.5, "restitution_speed": 0.75, "iterations": 9 },
                              "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
                              "max_samples_per_body": 700 },
-                "threads": 2 },
+                "threads": 2,
+                "sleep": { "enabled": false, "linear_speed": 0.125, "angular_speed": 0.75, "time": 1.25 } },
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },
   "materials": {
     "rubber": { "density": 1100, "young": 5e6, "poisson": 0.45, "friction": 0.9, "restitution": 0.7,
@@ -243,7 +249,7 @@ std::string every_field_scene()
       "shape": { "type": "superquadric", "radii": [0.1, 0.07, 0.3], "exponents": [0.7, 1.3],
                  "taper": [0.2, -0.3], "bend": { "curvature": 1.1, "angle": 0.4 } },
       "position": [1, 0.5, 0.1], "orientation": [0.3, -0.4, 0.5, 0.6], "velocity": [0.1, 0.2, -0.3],
-      "angular_velocity": [1, -2, 3], "gravity_scale": 0.5,
+      "angular_velocity": [1, -2, 3], "gravity_scale": 0.5, "sleep": false,
       "dynamics": { "type": "modal", "modes": 5, "lattice": [2, 2, 4], "integrator": "central_difference",
                     "damping_ratio": 0.03 } },
     { "name": "gem", "mass": 2.5, "parent": "blob",

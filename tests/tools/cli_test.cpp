@@ -170,6 +170,7 @@ TEST(Cli, DemoSceneRuns)
     const Outcome o = run_cli("run " + std::string(SM_SOURCE_DIR) + "/samples/demo.json --steps 50");
     ASSERT_EQ(o.status, 0) << o.output;
     EXPECT_EQ(nlohmann::json::parse(o.output)["body_count"], 4);
+    EXPECT_EQ(nlohmann::json::parse(o.output)["sleeping"], 0); // nothing rests yet after 0.2 s
 }
 
 TEST(Cli, ThreadsGiveTheSameHashAndContactsAreReported)

@@ -80,6 +80,8 @@ struct BodyDef {
     double rolling_resistance = 0.0; ///< Rolling lever arm ℓ [m], ≥ 0: a rolling contact is resisted
                                      ///< by a torque up to ℓ·F_n; a pair uses the larger of the two.
     ModalBodyDef modal{};            ///< Deformation; rigid unless modal.enabled.
+    bool allow_sleep = true;         ///< False: never sleeps, and keeps every body it touches or is
+                                     ///< jointed to awake (WorldDef::sleep).
 };
 
 /// The documented starting point: a dynamic water-density sphere of radius 0.5 m at the origin.
@@ -142,5 +144,12 @@ SM_API void apply_torque(World& world, Entity body, const Vec3& torque);
 SM_API void apply_linear_impulse(World& world, Entity body, const Vec3& impulse, const Vec3& point);
 /// Changes angular momentum at once by an angular impulse [N·m·s], world frame.
 SM_API void apply_angular_impulse(World& world, Entity body, const Vec3& impulse);
+
+/// False while `body` sleeps (WorldDef::sleep); static bodies are always awake.
+[[nodiscard]] SM_API bool body_is_awake(const World& world, Entity body);
+/// Wakes `body` and every body of its sleeping island; resets its sleep timer either way.
+SM_API void wake_body(World& world, Entity body);
+/// Dynamic bodies asleep now [-].
+[[nodiscard]] SM_API size_t world_sleeping_count(const World& world);
 
 } // namespace supermodal

@@ -23,6 +23,18 @@ namespace supermodal
 class ModalBasisCache; // supermodal/modal.h
 class TaskSystem;      // supermodal/tasks.h
 
+/// When bodies at rest stop being stepped (docs/sleeping.md). A body is slow while its speeds stay
+/// under these; an island of touching or jointed dynamic bodies that have all been slow for `time`
+/// sleeps: it is neither integrated nor collided until something wakes it.
+struct SleepDef {
+    bool enabled = true;        ///< False: no body ever sleeps (and sleeping ones wake).
+    double linear_speed = 0.05; ///< [m/s], ≥ 0: a body is slow while |v| + ρ·|ω| (ρ: its largest
+                                ///< radius, so the speed of its fastest point) stays under it; a modal
+                                ///< body's modes also need √(|q̇|²/m) under it (their kinetic energy).
+    double angular_speed = 1.0; ///< [rad/s], ≥ 0: and |ω| under this (small bodies turning in place).
+    double time = 0.5;          ///< [s], > 0: how long an island stays slow before it sleeps.
+};
+
 /// How to make a world. Start from default_world_def() and change what differs.
 struct WorldDef {
     double dt = 0.002;              ///< Fixed step [s], > 0. Penalty contact wants small steps.
@@ -31,6 +43,7 @@ struct WorldDef {
     int max_steps_per_advance = 64; ///< advance() runs at most this many steps per call [-], ≥ 1,
                                     ///< dropping the rest of the backlog so a slow frame cannot spiral.
     ContactDef contact{};           ///< Contact settings (solver, narrowphase).
+    SleepDef sleep{};               ///< Sleeping of bodies at rest.
     int constraint_iterations = 4;  ///< Gauss–Seidel passes over the constraint springs per substep [-],
                                     ///< in [1, 100]; more lets chains of unequal masses hold tighter.
     int thread_count = 1;           ///< Threads of the built-in pool [-], in [1, 64]: the caller's thread
@@ -73,8 +86,9 @@ enum class Stage : uint8_t {
 /// Time spent per stage, summed over the last step's substeps [ms].
 struct StepProfile {
     std::array<double, static_cast<size_t>(Stage::Count)> stage_ms{};
-    double total_ms = 0.0; ///< Wall time of the last step [ms].
-    size_t pair_count = 0; ///< Candidate pairs of the last step's broadphase [-].
+    double total_ms = 0.0;     ///< Wall time of the last step [ms].
+    size_t pair_count = 0;     ///< Candidate pairs of the last step's broadphase [-].
+    size_t sleeping_count = 0; ///< Dynamic bodies asleep after the last step [-].
 };
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.

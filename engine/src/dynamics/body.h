@@ -31,6 +31,7 @@ struct BodyModel {
     double friction = 0.5;                    ///< Coulomb coefficient [-].
     double restitution = 0.2;                 ///< [-].
     double rolling_resistance = 0.0;          ///< Rolling lever arm [m].
+    bool allow_sleep = true;                  ///< BodyDef::allow_sleep.
     double contact_compliance = 1e-9;         ///< (1 − ν²)/E [1/Pa], for Hertz contact.
     double curvature = 0.0;                   ///< 1/R [1/m] for Hertz contact: 1/smallest radius; 0 plane.
     std::shared_ptr<const Collider> collider; ///< Contact model (shared by identical shapes).

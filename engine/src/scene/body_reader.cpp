@@ -18,10 +18,11 @@ namespace supermodal::scene_io
 namespace
 {
 
-const std::vector<std::string_view> k_body_keys = {
-    "name",        "shape",    "material",         "density", "mass",          "position",
-    "orientation", "velocity", "angular_velocity", "motion",  "gravity_scale", "dynamics",
-    "parent",      "mesh"};
+const std::vector<std::string_view> k_body_keys = {"name",        "shape",         "material",
+                                                   "density",     "mass",          "position",
+                                                   "orientation", "velocity",      "angular_velocity",
+                                                   "motion",      "gravity_scale", "dynamics",
+                                                   "parent",      "mesh",          "sleep"};
 // In ShapeType order, so a choice's index is its enumerator; each type's keys at the same index.
 const std::vector<std::string_view> k_shape_types = {"superquadric", "plane", "hyperquadric"};
 const std::vector<std::vector<std::string_view>> k_shape_keys = {
@@ -371,6 +372,7 @@ void read_body(Reader& r, const Json& body, const std::string& where, const Scen
     r.field_vec3(body, where, "velocity", any_number(), def.linear_velocity);
     r.field_vec3(body, where, "angular_velocity", any_number(), def.angular_velocity);
     r.field_number(body, where, "gravity_scale", any_number(), def.gravity_scale);
+    r.field_bool(body, where, "sleep", def.allow_sleep);
     if (const Json* parent = r.member(body, "parent"))
         // An earlier body: the child's pose is read in the parent's frame.
         read_body_name(r, *parent, pointer_join(where, "parent"), scene, out_body.parent,

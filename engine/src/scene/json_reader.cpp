@@ -228,6 +228,21 @@ void Reader::read_vec3(const Json& value, const std::string& where, const Range&
     out_value = {v[0], v[1], v[2]};
 }
 
+void Reader::read_bool(const Json& value, const std::string& where, bool& out_value)
+{
+    if (!ok())
+        return;
+    if (!value.is_boolean())
+        return fail(where, "expected true or false, found " + describe_value(value));
+    out_value = value.get<bool>();
+}
+
+void Reader::field_bool(const Json& object, const std::string& where, std::string_view key, bool& out_value)
+{
+    if (const Json* value = member(object, key))
+        read_bool(*value, pointer_join(where, key), out_value);
+}
+
 void Reader::read_string(const Json& value, const std::string& where, std::string& out_value)
 {
     if (!ok())

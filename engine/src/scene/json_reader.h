@@ -94,6 +94,8 @@ class Reader
                       std::span<double> out_values);
     /// An array of 3 finite numbers in `range`.
     void read_vec3(const Json& value, const std::string& where, const Range& range, Vec3& out_value);
+    /// true or false.
+    void read_bool(const Json& value, const std::string& where, bool& out_value);
     /// A string.
     void read_string(const Json& value, const std::string& where, std::string& out_value);
     /// One of `choices` (a string); out_index is its position in `choices`.
@@ -107,6 +109,7 @@ class Reader
                    int& out_value);
     void field_vec3(const Json& object, const std::string& where, std::string_view key, const Range& range,
                     Vec3& out_value);
+    void field_bool(const Json& object, const std::string& where, std::string_view key, bool& out_value);
 
   private:
     std::string m_file;

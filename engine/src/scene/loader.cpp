@@ -34,8 +34,9 @@ const std::vector<std::string_view> k_top_keys = {"settings", "materials",   "in
 const std::vector<std::string_view> k_include_keys = {"file", "prefix", "position", "orientation"};
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
-    "dt",      "substeps", "gravity", "duration", "max_steps_per_advance", "constraint_iterations",
-    "contact", "threads",  "accuracy"};
+    "dt",      "substeps", "gravity",  "duration", "max_steps_per_advance", "constraint_iterations",
+    "contact", "threads",  "accuracy", "sleep"};
+const std::vector<std::string_view> k_sleep_keys = {"enabled", "linear_speed", "angular_speed", "time"};
 const std::vector<std::string_view> k_accuracy_keys = {"displacement"};
 const std::vector<std::string_view> k_contact_keys = {"solver",    "soft",           "path",
                                                       "stiffness", "sample_spacing", "max_samples_per_body"};
@@ -97,6 +98,19 @@ void read_contact(Reader& r, const Json& contact, const std::string& where, Cont
     r.field_int(contact, where, "max_samples_per_body", scene_io::closed(1.0, 1e6), out.max_samples_per_body);
 }
 
+// true/false, or an object of SleepDef's fields.
+void read_sleep(Reader& r, const Json& sleep, const std::string& where, SleepDef& out)
+{
+    if (sleep.is_boolean())
+        return r.read_bool(sleep, where, out.enabled);
+    if (!r.check_object(sleep, where, k_sleep_keys))
+        return;
+    r.field_bool(sleep, where, "enabled", out.enabled);
+    r.field_number(sleep, where, "linear_speed", scene_io::at_least(0.0), out.linear_speed);
+    r.field_number(sleep, where, "angular_speed", scene_io::at_least(0.0), out.angular_speed);
+    r.field_number(sleep, where, "time", scene_io::above(0.0), out.time);
+}
+
 void read_settings(Reader& r, const Json& root, Scene& out_scene)
 {
     const Json* settings = r.member(root, "settings");
@@ -116,6 +130,8 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
     if (const Json* contact = r.member(*settings, "contact"))
         read_contact(r, *contact, where + "/contact", world.contact);
     r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
+    if (const Json* sleep = r.member(*settings, "sleep"))
+        read_sleep(r, *sleep, where + "/sleep", world.sleep);
     if (const Json* accuracy = r.member(*settings, "accuracy"))
         if (r.check_object(*accuracy, where + "/accuracy", k_accuracy_keys))
             r.field_number(*accuracy, where + "/accuracy", "displacement", scene_io::above(0.0),

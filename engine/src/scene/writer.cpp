@@ -61,6 +61,10 @@ Json settings_json(const Scene& scene)
                     {"sample_spacing", w.contact.sample_spacing},
                     {"max_samples_per_body", w.contact.max_samples_per_body}};
     s["threads"] = w.thread_count;
+    s["sleep"] = {{"enabled", w.sleep.enabled},
+                  {"linear_speed", w.sleep.linear_speed},
+                  {"angular_speed", w.sleep.angular_speed},
+                  {"time", w.sleep.time}};
     s["accuracy"] = {{"displacement", scene.accuracy.displacement}};
     return s;
 }
@@ -145,6 +149,8 @@ Json body_json(const Scene& scene, const SceneBody& body)
     j["angular_velocity"] = vec3(d.angular_velocity);
     j["motion"] = k_motion_names[static_cast<size_t>(d.motion)];
     j["gravity_scale"] = d.gravity_scale;
+    if (!d.allow_sleep)
+        j["sleep"] = false;
     if (!body.mesh.empty())
         j["mesh"] = body.mesh;
     // A body read without "dynamics" keeps the default ModalBodyDef (not its material's constants), and

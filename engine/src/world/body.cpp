@@ -48,7 +48,11 @@ World::Impl* live_mut(World& world, Entity e)
     const bool ok = w.reg.valid(e) && w.reg.has<BodyModel>(e);
     SM_ASSERT(ok, "stale or null body handle");
     SM_ASSERT(!w.locked, "bodies cannot change while the world steps");
-    return ok && !w.locked ? &w : nullptr;
+    if (!ok || w.locked)
+        return nullptr;
+    // Every edit of a body wakes its island: a sleeping body would ignore it.
+    wake_island_of(w.reg, w.contact, e);
+    return &w;
 }
 
 bool finite_def(const BodyDef& d)
@@ -179,6 +183,7 @@ Entity create_body(World& world, const BodyDef& def)
     model.friction = def.friction;
     model.restitution = def.restitution;
     model.rolling_resistance = def.rolling_resistance;
+    model.allow_sleep = def.allow_sleep;
     model.contact_compliance = (1.0 - def.poisson * def.poisson) / def.young;
     // Hertz needs the curvature at the contact; the smallest radius bounds it for convex bodies (exact
     // for spheres, and the stiffer choice elsewhere).
@@ -199,6 +204,7 @@ Entity create_body(World& world, const BodyDef& def)
     w.reg.emplace(e, Velocity{def.motion == MotionType::Static ? Vec3{} : def.linear_velocity,
                               def.motion == MotionType::Static ? Vec3{} : def.angular_velocity});
     w.reg.emplace(e, ForceAccumulator{});
+    w.reg.emplace(e, Sleep{});
     if (lattice.basis)
         attach_modal_body(w, e, lattice, def);
     return e;
@@ -411,6 +417,23 @@ void apply_angular_impulse(World& world, Entity e, const Vec3& impulse)
     const BodyModel& m = w->reg.get<BodyModel>(e);
     const Quat q = principal_orientation(m, w->reg.get<Pose>(e).orientation);
     w->reg.get<Velocity>(e).angular += rotate(q, hadamard(m.inv_inertia_body, inv_rotate(q, impulse)));
+}
+
+bool body_is_awake(const World& world, Entity e)
+{
+    const World::Impl* w = live(world, e);
+    return w != nullptr && !is_asleep(w->reg, e);
+}
+void wake_body(World& world, Entity e)
+{
+    (void)live_mut(world, e); // wakes its island
+}
+size_t world_sleeping_count(const World& world)
+{
+    size_t n = 0;
+    for (const Sleep& s : impl_of(world).reg.store<Sleep>().values())
+        n += s.asleep ? 1 : 0;
+    return n;
 }
 
 } // namespace supermodal

@@ -10,6 +10,13 @@
 namespace supermodal
 {
 
-using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator, ModalBody>;
+/// State: how long a body has been slow enough to sleep, and whether it sleeps (world/sleep.h).
+struct Sleep {
+    double timer = 0.0;           ///< [s] slow so far; hashed.
+    bool asleep = false;          ///< Hashed.
+    uint32_t island = UINT32_MAX; ///< While asleep: its island (lowest entity index in it at sleep time).
+};
+
+using Registry = BasicRegistry<BodyModel, Pose, Velocity, ForceAccumulator, ModalBody, Sleep>;
 
 } // namespace supermodal

@@ -100,6 +100,9 @@ Constraint create_constraint(World& world, const ConstraintDef& def)
     if (!(length(axis) > 0.0))
         axis = c.local_a;
     c.axis_a = length(axis) > 1e-12 ? normalized(axis) : Vec3{0, 0, 1};
+    // A joint made or removed changes what holds its bodies: they wake to feel it.
+    wake_island_of(w.reg, w.contact, def.a);
+    wake_island_of(w.reg, w.contact, def.b);
     const Entity e = w.constraints.reg.create();
     w.constraints.reg.emplace(e, std::move(c));
     w.constraints.reg.emplace(e, ConstraintState{});
@@ -110,8 +113,13 @@ void destroy_constraint(World& world, Constraint constraint)
 {
     World::Impl& w = impl_of(world);
     SM_ASSERT(!w.locked, "constraints cannot be destroyed while the world steps");
-    if (!w.locked)
-        w.constraints.reg.destroy(to_entity(constraint));
+    if (w.locked)
+        return;
+    if (const ConstraintModel* c = w.constraints.reg.find<ConstraintModel>(to_entity(constraint))) {
+        wake_island_of(w.reg, w.contact, c->def.a);
+        wake_island_of(w.reg, w.contact, c->def.b);
+    }
+    w.constraints.reg.destroy(to_entity(constraint));
 }
 
 bool world_valid(const World& world, Constraint constraint)

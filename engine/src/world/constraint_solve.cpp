@@ -9,6 +9,7 @@
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
 #include "world/integrate.h"
+#include "world/sleep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -282,7 +283,7 @@ uint32_t island_node(const Side& s, Entity body)
 
 // This substep's rows, one per unbroken constraint in entity index order (so the result does not depend
 // on the store's creation/destruction history), not yet prepared. Returns their count.
-size_t collect_rows(ConstraintWorld& cw, ConstraintScratch& scratch)
+size_t collect_rows(const Registry& bodies, ConstraintWorld& cw, ConstraintScratch& scratch)
 {
     const std::vector<Entity>& stored = cw.reg.store<ConstraintModel>().entities();
     scratch.order.assign(stored.begin(), stored.end());
@@ -291,6 +292,10 @@ size_t collect_rows(ConstraintWorld& cw, ConstraintScratch& scratch)
     scratch.rows.resize(std::max(scratch.rows.size(), scratch.order.size()));
     size_t n = 0;
     for (Entity ce : scratch.order) {
+        // Both ends asleep (or one asleep, the other fixed): the joint sleeps with them, its state kept.
+        const ConstraintDef& d = cw.reg.get<ConstraintModel>(ce).def;
+        if (is_asleep(bodies, d.a) || is_asleep(bodies, d.b))
+            continue;
         ConstraintState& st = cw.reg.get<ConstraintState>(ce);
         st.force_on_a = Vec3{};
         st.error = ConstraintError{};
@@ -400,7 +405,7 @@ void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Regist
                              ConstraintWorld& cw, ConstraintScratch& scratch, ExtraRows extra)
 {
     cw.max_error = 0.0;
-    const size_t n = collect_rows(cw, scratch);
+    const size_t n = collect_rows(bodies, cw, scratch);
     scratch.row_count = n;
     const std::span<Row> rows(scratch.rows.data(), n);
     prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands, extra);

@@ -4,6 +4,7 @@
 #include "core/parallel.h"
 #include "world/integrate.h"
 #include "world/modal_system.h"
+#include "world/sleep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -201,6 +202,7 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     add_swept_proxies(def, reg, io);
     find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
     drop_pairs_apart(reg, io);
+    settle_sleeping_pairs(reg, io);
     begin_step_events(io.events, io.pairs.size());
     return substeps_needed(def, reg, io);
 }

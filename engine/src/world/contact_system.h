@@ -31,6 +31,16 @@ struct PairPoints {
     uint32_t part = 0, begin = 0, end = 0;
 };
 
+/// Contact data of sleeping pairs (no end awake), set aside while their bodies sleep so that the
+/// pairs wake with the friction anchors and manifold points they slept with (world/sleep.h).
+struct ParkedContacts {
+    std::vector<PairAnchor> anchors;     ///< State: by key; hashed and snapshotted.
+    std::vector<PairManifold> manifolds; ///< State: by key; hashed and snapshotted.
+    std::vector<TouchRecord> touching;   ///< Derived: touching as they fell asleep (no events meanwhile).
+    std::vector<uint8_t> body_class;     ///< Scratch: per entity index, a SleepClass.
+    std::vector<uint32_t> wake;          ///< Scratch: islands to wake.
+};
+
 /// Contact data of a world: state (anchors), derived (pairs, points, contacts), scratch.
 struct ContactWorld {
     std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
@@ -56,8 +66,9 @@ struct ContactWorld {
     std::vector<std::vector<double>> modal_phi; ///< Scratch: one per part, φ at a point of a modal body.
     /// Scratch: per part, parallel to part_points, each point's normal force [N] (pairs with modes only).
     std::vector<std::vector<double>> part_point_force;
-    ContactEvents events; ///< Step events and the host's callback.
-    SoftContacts soft;    ///< Scratch: the soft solver's rows of this substep.
+    ContactEvents events;  ///< Step events and the host's callback.
+    SoftContacts soft;     ///< Scratch: the soft solver's rows of this substep.
+    ParkedContacts parked; ///< Contacts of sleeping pairs.
 
     /// The points of pair pi in this substep.
     [[nodiscard]] std::span<const ContactPoint> points_of(size_t pi) const

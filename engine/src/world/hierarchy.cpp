@@ -34,6 +34,9 @@ Status set_body_parent(World& world, Entity child, Entity parent)
     if (w.constraints.parent.size() <= child.index)
         w.constraints.parent.resize(child.index + 1);
     w.constraints.parent[child.index] = parent;
+    // The link turns collision between the two off: they wake to let go of each other.
+    wake_island_of(w.reg, w.contact, child);
+    wake_island_of(w.reg, w.contact, parent);
     return {};
 }
 
@@ -100,6 +103,7 @@ Status set_body_shape(World& world, Entity body, const ShapeDef& shape)
         return s;
     if (w.reg.has<ModalBody>(body))
         return Error{"", "shape", "a modal body cannot be reshaped yet (its modes would need rebuilding)"};
+    wake_island_of(w.reg, w.contact, body);
     BodyModel& m = w.reg.get<BodyModel>(body);
     if ((m.shape.type == ShapeType::Plane) != (shape.type == ShapeType::Plane))
         return Error{"", "shape/type", "a plane cannot become a solid or the other way round"};

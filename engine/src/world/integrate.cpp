@@ -69,11 +69,11 @@ void integrate_forces(const StepContext& ctx, const Parallel& par, Registry& reg
     // Writes only the visited entity's Velocity, so neither view order nor threads change the result.
     par.for_parts(
         reg.store<BodyModel>().size(), k_min_bodies_per_part, [&](size_t, size_t begin, size_t end) {
-            reg.each_in<BodyModel, ForceAccumulator, Velocity, Pose>(
+            reg.each_in<BodyModel, ForceAccumulator, Velocity, Pose, Sleep>(
                 begin, end,
                 [&](Entity, const BodyModel& body, const ForceAccumulator& acc, Velocity& vel,
-                    const Pose& pose) {
-                    if (body.motion != MotionType::Dynamic)
+                    const Pose& pose, const Sleep& sleep) {
+                    if (body.motion != MotionType::Dynamic || sleep.asleep)
                         return;
                     vel.linear += ctx.h * (body.gravity_scale * ctx.gravity + body.inv_mass * acc.force);
                     // Torque kick on the angular momentum; the torque-free flow follows in
@@ -95,9 +95,10 @@ void integrate_positions(const StepContext& ctx, const Parallel& par, Registry& 
     fallbacks.assign(par.part_capacity(), 0);
     par.for_parts(reg.store<BodyModel>().size(), k_min_bodies_per_part,
                   [&](size_t part, size_t begin, size_t end) {
-                      reg.each_in<BodyModel, Velocity, Pose>(
-                          begin, end, [&](Entity, const BodyModel& body, Velocity& vel, Pose& pose) {
-                              if (integrate_body(ctx.h, body, vel, pose))
+                      reg.each_in<BodyModel, Velocity, Pose, Sleep>(
+                          begin, end,
+                          [&](Entity, const BodyModel& body, Velocity& vel, Pose& pose, const Sleep& sleep) {
+                              if (!sleep.asleep && integrate_body(ctx.h, body, vel, pose))
                                   ++fallbacks[part];
                           });
                   });

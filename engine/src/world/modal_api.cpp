@@ -74,6 +74,7 @@ Status set_body_modal_state(World& world, Entity e, std::span<const double> ampl
     for (size_t k = 0; k < s.q.size(); ++k)
         if (!std::isfinite(amplitudes[k]) || !std::isfinite(velocities[k]))
             return Error{"", "modal", "amplitudes and rates must be finite"};
+    wake_island_of(w.reg, w.contact, e);
     s.q.assign(amplitudes.begin(), amplitudes.end());
     s.q_dot.assign(velocities.begin(), velocities.end());
     // An adaptive body activates every mode up to the highest one set.

@@ -446,11 +446,12 @@ void update_modal_bodies(const StepContext& ctx, const Parallel& par, Registry& 
     std::vector<ModalBody>& bodies = reg.store<ModalBody>().values();
     std::vector<uint8_t>& flags = scratch.flags;
     flags.assign(bodies.size(), 0);
+    const std::vector<Entity>& entities = reg.store<ModalBody>().entities();
     par.for_parts(bodies.size(), 1, [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i)
-            flags[i] = step_modal_body(ctx.h, bodies[i]);
+            if (!reg.get<Sleep>(entities[i]).asleep) // a sleeping body's modes rest with it
+                flags[i] = step_modal_body(ctx.h, bodies[i]);
     });
-    const std::vector<Entity>& entities = reg.store<ModalBody>().entities();
     for (size_t i = 0; i < bodies.size(); ++i) {
         if ((flags[i] & k_switched) != 0)
             ++io_warnings.modal_integrator_switches;

@@ -24,7 +24,7 @@ enum class Field : uint8_t {
 };
 
 /// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
-inline constexpr uint32_t k_snapshot_layout_version = 3;
+inline constexpr uint32_t k_snapshot_layout_version = 4;
 
 [[nodiscard]] inline uint64_t entity_key(Entity e)
 {
@@ -107,14 +107,18 @@ template <class V, class W> void visit_bodies(V& v, W& w)
         visit_vec3(v, vel.angular, Field::Hashed);
         visit_vec3(v, force.force, Field::Saved);
         visit_vec3(v, force.torque, Field::Saved);
+        auto& sleep = w.reg.template get<Sleep>(e);
+        v.real(sleep.timer, Field::Hashed);
+        v.flag(sleep.asleep, Field::Hashed);
+        v.integer(sleep.island, Field::Saved);
         if (auto* b = w.reg.template find<ModalBody>(e))
             visit_modal(v, b->state, *b->model);
     });
 }
 
-template <class V, class W> void visit_contacts(V& v, W& w)
+template <class V, class A> void visit_anchors(V& v, A& anchors)
 {
-    for (auto& a : v.sequence(w.contact.anchors, Field::Saved)) {
+    for (auto& a : v.sequence(anchors, Field::Saved)) {
         v.integer(a.key, Field::Hashed);
         visit_vec3(v, a.spring, Field::Hashed);
         v.real(a.twist, Field::Hashed);
@@ -125,7 +129,11 @@ template <class V, class W> void visit_contacts(V& v, W& w)
         visit_vec3(v, a.friction_load, Field::Hashed);
         visit_vec3(v, a.roll_load, Field::Hashed);
     }
-    for (auto& m : v.sequence(w.contact.manifolds, Field::Saved)) {
+}
+
+template <class V, class M> void visit_manifolds(V& v, M& manifolds)
+{
+    for (auto& m : v.sequence(manifolds, Field::Saved)) {
         v.integer(m.key, Field::Hashed);
         v.integer(m.count, Field::Hashed);
         if (!v.check(m.count >= 0 && m.count <= PairManifold::k_capacity,
@@ -136,6 +144,15 @@ template <class V, class W> void visit_contacts(V& v, W& w)
             visit_vec3(v, m.points[static_cast<size_t>(i)].local_b, Field::Hashed);
         }
     }
+}
+
+template <class V, class W> void visit_contacts(V& v, W& w)
+{
+    visit_anchors(v, w.contact.anchors);
+    visit_manifolds(v, w.contact.manifolds);
+    // Sleeping pairs' contacts, which their bodies wake with.
+    visit_anchors(v, w.contact.parked.anchors);
+    visit_manifolds(v, w.contact.parked.manifolds);
 }
 
 template <class V, class W> void visit_constraints(V& v, W& w)

@@ -64,6 +64,12 @@ Status validate(const WorldDef& def)
         return Error{"", "constraint_iterations", "expected an integer in [1, 100]"};
     if (def.thread_count < 1 || def.thread_count > k_max_threads)
         return Error{"", "thread_count", "expected an integer in [1, 64]"};
+    if (!(def.sleep.linear_speed >= 0.0) || !std::isfinite(def.sleep.linear_speed))
+        return Error{"", "sleep.linear_speed", "expected a finite speed >= 0 m/s"};
+    if (!(def.sleep.angular_speed >= 0.0) || !std::isfinite(def.sleep.angular_speed))
+        return Error{"", "sleep.angular_speed", "expected a finite angular speed >= 0 rad/s"};
+    if (!(def.sleep.time > 0.0) || !std::isfinite(def.sleep.time))
+        return Error{"", "sleep.time", "expected a finite time > 0 s"};
     return validate_soft(def.contact.soft);
 }
 
@@ -124,6 +130,7 @@ void World::Impl::step()
     int substeps = def.substep_count;
     run(Stage::Broadphase, [&] {
         non_colliding_pairs(constraints, contact.excluded_pairs);
+        wake_jointed(constraints, reg, contact);
         substeps = update_pairs(def, reg, contact);
         profile.pair_count = contact.pairs.size();
     });
@@ -172,6 +179,8 @@ void World::Impl::step()
         if (faults.callback != nullptr)
             for (const FaultEvent& f : faults.events)
                 faults.callback(f, faults.user_data);
+        // After the events, so a pair that falls asleep keeps its touch record parked, not ended.
+        profile.sleeping_count = update_sleep(def, reg, contact, constraints, scratch.sleep);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;
@@ -260,8 +269,10 @@ Status World::set_settings(const WorldDef& def)
         return Error{"", "modal_basis_cache", "cannot change after creation"};
     if (def.dt != w.def.dt && w.step_count > 0)
         return Error{"", "dt", "can change only before the first step (time is step_count * dt)"};
-    // The step reads the settings afresh each time, so changing them between steps is safe.
+    // The step reads the settings afresh each time, so changing them between steps is safe. Sleeping
+    // bodies rested under the old ones (gravity, sleep limits): they wake to feel the new.
     w.def = def;
+    wake_every_body(w.reg, w.contact);
     return {};
 }
 

@@ -10,6 +10,7 @@
 #include "world/contact_system.h"
 #include "world/integrate.h"
 #include "world/modal_system.h"
+#include "world/sleep.h"
 
 namespace supermodal
 {
@@ -19,6 +20,7 @@ struct StepScratch {
     IntegrateScratch integrate;
     ModalScratch modal;
     ConstraintScratch constraints;
+    SleepScratch sleep;
 };
 
 struct World::Impl {
