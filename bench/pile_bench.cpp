@@ -2,7 +2,8 @@
 // Issue #5 pile: N bodies (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an
 // open box, dt = 1/240 s, 720 steps, μ = 0.5. Reported over the last 240 steps: ms per step (the
 // benchmark's manual time, per step, and the process CPU time per step), the deepest penetration, the
-// contacts at the end, and the wall time per stage from the world's profile. free_cores_ms_per_step
+// contacts at the end, the support-map evaluations per touching pair and substep (the candidate pairs'
+// misses included), and the wall time per stage from the world's profile. free_cores_ms_per_step
 // estimates the wall time on idle cores from thread CPU times: the serial CPU time plus, for each
 // parallel loop, its busiest part (this machine is shared, so its wall times with two threads are not).
 //
@@ -166,12 +167,14 @@ void BM_Pile(benchmark::State& st, Shape shape)
     const int substeps = static_cast<int>(st.range(2));
     double max_pen = 0.0, ms = 0.0, cpu_ms = 0.0, free_cores_ms = 0.0;
     size_t contacts = 0, pairs = 0;
+    uint64_t support_calls = 0, touching_pairs = 0;
     std::array<double, static_cast<size_t>(sm::Stage::Count)> stage_ms{};
     for (auto _ : st) {
         auto tasks = std::make_shared<TimedTasks>(threads);
         sm::World w = make_pile(shape, n, tasks, substeps);
         max_pen = 0.0;
         stage_ms.fill(0.0);
+        support_calls = touching_pairs = 0;
         for (int i = 0; i < k_steps - k_timed_steps; ++i)
             w.step();
         const auto start = std::chrono::steady_clock::now();
@@ -182,6 +185,8 @@ void BM_Pile(benchmark::State& st, Shape shape)
             max_pen = std::max(max_pen, sm::world_max_penetration(w));
             for (size_t s = 0; s < stage_ms.size(); ++s)
                 stage_ms[s] += w.profile().stage_ms[s];
+            support_calls += w.profile().support_calls;
+            touching_pairs += w.profile().touching_pairs;
         }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -202,6 +207,9 @@ void BM_Pile(benchmark::State& st, Shape shape)
     st.counters["max_penetration_mm"] = 1e3 * max_pen;
     st.counters["contacts"] = static_cast<double>(contacts);
     st.counters["pairs"] = static_cast<double>(pairs); // broadphase candidates
+    // Support-map evaluations (one body each) per touching pair and substep, misses included.
+    st.counters["supports_per_touching_pair"] =
+        touching_pairs > 0 ? static_cast<double>(support_calls) / static_cast<double>(touching_pairs) : 0.0;
     for (size_t s = 0; s < stage_ms.size(); ++s) {
         const double per_step = stage_ms[s] / k_timed_steps;
         if (per_step > 0.0)

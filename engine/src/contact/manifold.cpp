@@ -67,7 +67,8 @@ Vec3 to_body(const BodyView& body, const Vec3& world)
 
 // Calls accept(support point) along `dir` tilted towards each of the four diagonals of the body's face
 // that faces `dir`, largest tilt first, until accept says the point is in contact.
-template <class Accept> void tilted_supports(const BodyView& body, const Vec3& dir, Accept&& accept)
+template <class Accept>
+void tilted_supports(const BodyView& body, const Vec3& dir, int& calls, Accept&& accept)
 {
     const Vec3 axes[3] = {rotate(body.orientation, {1, 0, 0}), rotate(body.orientation, {0, 1, 0}),
                           rotate(body.orientation, {0, 0, 1})};
@@ -79,9 +80,11 @@ template <class Accept> void tilted_supports(const BodyView& body, const Vec3& d
     const Vec3 u = normalized(e - dot(e, dir) * dir), v = cross(dir, u);
     for (int s = 0; s < 4; ++s) {
         const Vec3 diagonal = ((s & 1) != 0 ? u : -u) + ((s & 2) != 0 ? v : -v);
-        for (double t : k_tilts)
+        for (double t : k_tilts) {
+            ++calls;
             if (accept(body_support(body, dir + t * diagonal)))
                 break;
+        }
     }
 }
 
@@ -183,9 +186,13 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
 
 } // namespace
 
-int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out)
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
+                     QueryCost* io_cost)
 {
+    QueryCost unused;
+    int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
     const MprResult mpr = mpr_penetration(a, b);
+    calls += 2 * mpr.support_calls;
     if (!mpr.hit) {
         io.count = 0;
         return 0;
@@ -209,6 +216,7 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
     // overhanging face's centre may not), then the tilted supports of flat faces.
     std::vector<Candidate> fresh;
     const Vec3 sa = body_support(a, -n), sb = body_support(b, n);
+    calls += 2;
     if (depth_inside(b, sa) > 0.0)
         add_unique(fresh, {sa, sa + mpr.depth * n, mpr.depth}, merge);
     if (depth_inside(a, sb) > 0.0)
@@ -222,7 +230,7 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
     // support point bounds that body (convex), so a candidate less than min_depth below it cannot be
     // min_depth deep: its inside test is skipped.
     if (has_flat_faces(*a.collider))
-        tilted_supports(a, -n, [&](const Vec3& p) {
+        tilted_supports(a, -n, calls, [&](const Vec3& p) {
             if (dot(sb - p, n) < min_depth)
                 return false;
             const double d = depth_inside(b, p);
@@ -231,7 +239,7 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
             return d >= min_depth;
         });
     if (has_flat_faces(*b.collider))
-        tilted_supports(b, n, [&](const Vec3& p) {
+        tilted_supports(b, n, calls, [&](const Vec3& p) {
             if (dot(p - sa, n) < min_depth)
                 return false;
             const double d = depth_inside(a, p);
@@ -243,8 +251,10 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
 }
 
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
-                           std::vector<ContactPoint>& out)
+                           std::vector<ContactPoint>& out, QueryCost* io_cost)
 {
+    QueryCost unused;
+    int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
     // The plane's support along −n is exact: no MPR. Depths are exact for every material point.
     const Vec3 n = normalized(plane.collider->shape.plane_normal);
     const double offset = plane.collider->shape.plane_offset;
@@ -263,13 +273,14 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
     }
     // The support point is the body's deepest: when it is out, every point is.
     const Candidate deepest = candidate(body_support(body, -n));
+    ++calls;
     if (!(deepest.depth > 0.0)) {
         io.count = 0;
         return 0;
     }
     std::vector<Candidate> fresh{deepest};
     if (has_flat_faces(*body.collider))
-        tilted_supports(body, -n, [&](const Vec3& p) {
+        tilted_supports(body, -n, calls, [&](const Vec3& p) {
             const Candidate c = candidate(p);
             const bool deep = c.depth >= k_min_depth_ratio * deepest.depth;
             if (deep)

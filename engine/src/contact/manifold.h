@@ -36,12 +36,14 @@ struct PairManifold {
 
 /// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
 /// points (normal from B towards A, weights summing to 1). Returns the number appended.
+/// The support-map evaluations it made are added to io_cost when given.
 int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io_manifold,
-                     std::vector<ContactPoint>& out_points);
+                     std::vector<ContactPoint>& out_points, QueryCost* io_cost = nullptr);
 
 /// Same for a convex body against a plane: the manifold's A is always the body; normals are flipped
 /// for the output when body_is_a is false (as collide_plane).
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
-                           PairManifold& io_manifold, std::vector<ContactPoint>& out_points);
+                           PairManifold& io_manifold, std::vector<ContactPoint>& out_points,
+                           QueryCost* io_cost = nullptr);
 
 } // namespace supermodal

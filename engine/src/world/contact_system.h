@@ -35,6 +35,9 @@ struct ContactWorld {
     std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
     std::vector<PairManifold> manifolds;     ///< State: support-map pairs' points, sorted by key.
     std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
+    std::vector<QueryCost> pair_cost;        ///< Scratch: per pair, its support-map work this substep.
+    uint64_t support_calls = 0;              ///< Derived: support-map evaluations over this step [-].
+    uint64_t touching_pairs = 0;             ///< Derived: pairs with points, summed over substeps [-].
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].

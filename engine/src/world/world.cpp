@@ -144,6 +144,8 @@ void World::Impl::step()
         });
         run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs); });
     }
+    profile.support_calls = contact.support_calls;
+    profile.touching_pairs = contact.touching_pairs;
     run(Stage::Events, [&] {
         clear_forces(reg);
         clear_modal_forces(reg);
