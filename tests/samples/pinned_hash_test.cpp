@@ -32,11 +32,14 @@ struct Pinned {
 // dissipated-energy credit; rigid pairs hold their spring while touching (penalty.cpp hold_stiffness),
 // which changes demo, chair and pile; ball on board by the two new fields only (its contacts all
 // involve the modal board, whose pairs do not hold their spring).
+// Chair and pile: each support-map manifold hashes its normal (where the next search starts); the
+// chair's pairs with a flat-faced body take the Newton search's normal instead of libccd's (the pile's
+// ellipsoids keep libccd's, so only the new field changes its hash).
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x7fbf6aba2a63ecdeULL},
-    {"chair_with_dummy", 500, 0x645e5e1a2dcd3e5dULL},
+    {"chair_with_dummy", 500, 0xebcc99ae4f39634fULL},
     {"ball_on_board", 400, 0xa959e468cdbd6b50ULL},
-    {"pile", 240, 0xc93e26c3a5901c78ULL},
+    {"pile", 240, 0x69548af1b85e825fULL},
 };
 
 class PinnedHash : public testing::TestWithParam<Pinned>

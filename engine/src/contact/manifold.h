@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Support-map narrowphase with a persistent contact manifold (up to 4 points per pair).
 //
-// MPR (mpr.h) gives one normal and depth per pair; a flat face needs more than one point to rest flat.
+// The penetration search (penetration.h: Newton from the pair's last normal, MPR when that fails)
+// gives one normal and depth per pair; a flat face needs more than one point to rest flat.
 // Each substep the manifold (a) keeps its old points, stored as material points of both bodies in
 // their body frames so they follow the motion, re-measuring their depth along today's normal and
 // dropping those that separated or slid apart; (b) adds the deepest point of A along the normal and,
@@ -32,6 +33,9 @@ struct PairManifold {
     uint64_t key = 0; ///< BodyPair::key().
     int count = 0;
     std::array<ManifoldPoint, k_capacity> points{};
+    /// The pair's normal (from B towards A) in A's body frame, where the next substep's search starts
+    /// (contact/penetration.h). Unit for a body pair, zero for a plane pair.
+    Vec3 normal{};
 };
 
 /// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
