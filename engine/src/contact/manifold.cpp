@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "contact/manifold.h"
 
+#include "contact/face_contact.h"
 #include "contact/mpr.h"
 #include "contact/penetration.h"
 
@@ -180,6 +181,32 @@ void reduce(std::vector<Candidate>& pts, const Vec3& n)
     pts.swap(kept);
 }
 
+// Orders the kept points so that a contact the manifold held before keeps its place among them (points
+// matched by their material point on A within `merge`, in the old order; new points after), so a
+// solver can carry per-point data from one substep to the next.
+void keep_slots(const BodyView& a, const PairManifold& old, std::vector<Candidate>& pts, double merge)
+{
+    std::array<int, 16> rank{};
+    for (size_t i = 0; i < pts.size() && i < rank.size(); ++i) {
+        const Vec3 local = to_body(a, pts[i].pa);
+        rank[i] = PairManifold::k_capacity + static_cast<int>(i);
+        for (int s = 0; s < old.count; ++s)
+            if (length(local - old.points[static_cast<size_t>(s)].local_a) < merge) {
+                rank[i] = s;
+                break;
+            }
+    }
+    std::vector<size_t> order(pts.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return rank[x] < rank[y]; });
+    std::vector<Candidate> sorted;
+    sorted.reserve(pts.size());
+    for (size_t i : order)
+        sorted.push_back(pts[i]);
+    pts.swap(sorted);
+}
+
 // Merges fresh candidates with the surviving old points, reduces to capacity, stores, and appends the
 // touching points with equal weights.
 int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, std::vector<Candidate>& old,
@@ -201,6 +228,96 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
     return touching;
 }
 
+// The manifold's points that still touch (or nearly): material points of both bodies, re-measured along
+// today's normal, dropped once lifted off or slid apart. None when `keep` is false (smooth pairs).
+std::vector<Candidate> carried_points(const BodyView& a, const BodyView& b, const PairManifold& io,
+                                      const Vec3& n, double r, bool keep)
+{
+    std::vector<Candidate> old;
+    const double merge = k_merge_rel * r;
+    for (int i = 0; keep && i < io.count; ++i) {
+        const Vec3 pa = to_world(a, io.points[i].local_a), pb = to_world(b, io.points[i].local_b);
+        const double depth = dot(pb - pa, n);
+        const Vec3 slide = (pb - pa) - depth * n;
+        if (depth > -k_separate_rel * r && length(slide) < merge)
+            old.push_back({pa, pb, depth});
+    }
+    return old;
+}
+
+// A face query's points as the manifold: reduced to capacity, in their old slots, stored, appended.
+int finish_faces(const BodyView& a, const BodyView* b, const FaceContact& fc, double merge, bool flip,
+                 PairManifold& io, std::vector<ContactPoint>& out)
+{
+    std::vector<Candidate> fresh, none;
+    for (int i = 0; i < fc.count; ++i) {
+        const FacePoint& p = fc.points[static_cast<size_t>(i)];
+        add_unique(fresh, {p.on_a, p.on_b, p.depth}, merge);
+    }
+    reduce(fresh, fc.normal);
+    keep_slots(a, io, fresh, merge);
+    return finish(a, b, fresh, none, fc.normal, merge, flip, io, out);
+}
+
+// A body's extent along a world direction, h(d) = max d·x [m]: from its pole when d is one of its face
+// axes (no evaluation: a face found apart is stored as exactly its axis), else its support point.
+double extent_along(const BodyView& body, const Vec3& d, int& calls)
+{
+    const Collider& c = *body.collider;
+    const Vec3 local = inv_rotate(body.orientation, d);
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 rest = local - local[k] * Vec3{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+        if (length(rest) < 1e-12) {
+            Vec3 pole;
+            pole[k] = (local[k] < 0.0 ? -1.0 : 1.0) * c.shape.radii[k];
+            return dot(d, to_world(body, pole - c.com_shape));
+        }
+    }
+    ++calls;
+    return dot(d, body_support(body, d));
+}
+
+// Overlap of the two bodies along n (from B towards A): h_B(n) + h_A(−n) [m]; ≤ 0 proves them apart.
+double overlap_along(const BodyView& a, const BodyView& b, const Vec3& n, int& calls)
+{
+    return extent_along(b, n, calls) + extent_along(a, -1.0 * n, calls);
+}
+
+// Two bodies with face patches (face_contact.h). A pair found apart at the last substep first tries the
+// direction that separated it (two evaluations). Returns the points appended, or −1 when the general
+// path must decide.
+int collide_faces(const BodyView& a, const BodyView& b, double r, PairManifold& io,
+                  std::vector<ContactPoint>& out, int& calls)
+{
+    const Vec3 stored = rotate(a.orientation, io.normal);
+    const bool has_normal = length(io.normal) > 0.0;
+    if (io.count == 0 && has_normal && !(overlap_along(a, b, stored, calls) > 0.0))
+        return 0; // still apart along it
+    const Vec3 guess = has_normal ? stored : body_shape_centre(a) - body_shape_centre(b);
+    const FaceContact fc = face_contact(a, b, normalized(guess));
+    calls += fc.support_calls;
+    switch (fc.kind) {
+    case FaceContact::Kind::Apart:
+        io.count = 0;
+        io.normal = inv_rotate(a.orientation, fc.normal);
+        return 0;
+    case FaceContact::Kind::Faces:
+        io.normal = inv_rotate(a.orientation, fc.normal);
+        return finish_faces(a, &b, fc, k_merge_rel * r, false, io, out);
+    case FaceContact::Kind::Edge: {
+        // Edges crossing touch in one point; points carried from earlier substeps hold edges that lie
+        // along each other.
+        std::vector<Candidate> old = carried_points(a, b, io, fc.normal, r, true);
+        std::vector<Candidate> fresh{{fc.points[0].on_a, fc.points[0].on_b, fc.points[0].depth}};
+        io.normal = inv_rotate(a.orientation, fc.normal);
+        return finish(a, &b, fresh, old, fc.normal, k_merge_rel * r, false, io, out);
+    }
+    case FaceContact::Kind::NotFaces:
+        break;
+    }
+    return -1;
+}
+
 } // namespace
 
 int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
@@ -208,32 +325,35 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
 {
     QueryCost unused;
     int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
+    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
+    if (has_face_patches(*a.collider) && has_face_patches(*b.collider)) {
+        const int done = collide_faces(a, b, r, io, out, calls);
+        if (done >= 0)
+            return done;
+    }
     // A pair with a flat-faced body searches from its last normal (penetration.h; MPR where that fails).
     // Smooth pairs keep MPR's own answer: libccd's normal is off the exact one by up to 0.4 rad at 1 mm
     // overlaps of the pile's ellipsoids, and the exact one changes how their pile settles
     // (docs/contact.md), so they change over on their own.
     const bool flat = keeps_old_points(*a.collider, b.collider);
     const Vec3 warm = io.count > 0 && flat ? rotate(a.orientation, io.normal) : Vec3{};
-    const Penetration pen = flat ? find_penetration(a, b, warm) : mpr_only(a, b);
+    // Bodies with face patches get here on rounded edges and corners, where the least overlap is the
+    // contact's own normal and MPR's centre ray often leaves through another face of B − A.
+    const bool faces = has_face_patches(*a.collider) && has_face_patches(*b.collider);
+    const PenetrationTarget target = faces ? PenetrationTarget::LeastOverlap : PenetrationTarget::RayExit;
+    const Penetration pen = flat ? find_penetration(a, b, warm, target) : mpr_only(a, b);
     calls += pen.support_calls;
     if (!pen.hit) {
         io.count = 0;
+        // A direction the search found apart is where a flat pair's next query starts.
+        io.normal = flat && length(pen.normal) > 0.0 ? inv_rotate(a.orientation, pen.normal) : Vec3{};
         return 0;
     }
     const Vec3 n = pen.normal;
-    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
     const double merge = k_merge_rel * r;
 
     // Old points: material points of both bodies, re-measured along today's normal.
-    std::vector<Candidate> old;
-    const int carried = keeps_old_points(*a.collider, b.collider) ? io.count : 0;
-    for (int i = 0; i < carried; ++i) {
-        const Vec3 pa = to_world(a, io.points[i].local_a), pb = to_world(b, io.points[i].local_b);
-        const double depth = dot(pb - pa, n);
-        const Vec3 slide = (pb - pa) - depth * n;
-        if (depth > -k_separate_rel * r && length(slide) < merge)
-            old.push_back({pa, pb, depth});
-    }
+    std::vector<Candidate> old = carried_points(a, b, io, n, r, flat);
 
     // Fresh points: the deepest point of each body along the normal (the search's last supports), if
     // it lies inside the other (an overhanging face's centre may not), then the tilted supports of flat
@@ -252,8 +372,11 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
     // (refilling when one drops) left points from the first touch near the face centres, and a
     // ten-box stack with them buckled even at 100 Hz (measured). The plane through the other body's
     // support point bounds that body (convex), so a candidate less than min_depth below it cannot be
-    // min_depth deep: its inside test is skipped.
-    if (has_flat_faces(*a.collider))
+    // min_depth deep: its inside test is skipped. Two bodies with face patches get here only touching
+    // on an edge or a corner (face_contact.h took faces and edges across edges), where the tilted
+    // supports add nothing the carried points do not.
+    const bool tilt = !(has_face_patches(*a.collider) && has_face_patches(*b.collider));
+    if (tilt && has_flat_faces(*a.collider))
         tilted_supports(a, -n, calls, [&](const Vec3& p) {
             if (dot(sb - p, n) < min_depth)
                 return false;
@@ -262,7 +385,7 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
                 add_unique(fresh, {p, p + d * n, d}, merge);
             return d >= min_depth;
         });
-    if (has_flat_faces(*b.collider))
+    if (tilt && has_flat_faces(*b.collider))
         tilted_supports(b, n, calls, [&](const Vec3& p) {
             if (dot(p - sa, n) < min_depth)
                 return false;
@@ -285,6 +408,16 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
     const double offset = plane.collider->shape.plane_offset;
     const double r = smallest_radius(*body.collider);
     const double merge = k_merge_rel * r;
+    if (has_face_patches(*body.collider)) {
+        const FaceContact fc = face_contact_plane(body, n, offset);
+        calls += fc.support_calls;
+        if (fc.kind == FaceContact::Kind::Apart) {
+            io.count = 0;
+            return 0;
+        }
+        if (fc.kind == FaceContact::Kind::Faces)
+            return finish_faces(body, nullptr, fc, merge, !body_is_a, io, out);
+    }
     auto candidate = [&](const Vec3& p) {
         return Candidate{p, p + (offset - dot(n, p)) * n, offset - dot(n, p)};
     };

@@ -20,7 +20,7 @@ constexpr double k_shrink = 0.25;
 // the search gives up for MPR [-]. Near a flat face's normal (ε < 1) the radius grows as a negative
 // power of the angle to it, and so does the step from a normal to its support point: Newton's model
 // holds over a sliver only (the face path, manifold.cpp, takes those contacts).
-constexpr double k_flat_radius_rel = 16.0;
+constexpr double k_flat_radius_rel = 1e300;
 
 double largest_radius(const Collider& c)
 {
@@ -54,6 +54,7 @@ void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2)
 struct Query {
     const BodyView* a;
     const BodyView* b;
+    PenetrationTarget target;
     Mat3 ra, rb;
     Vec3 u;      // unit, c_A − c_B: the ray's direction beyond the origin
     Vec3 e1, e2; // basis of the plane ⊥ u, where the residual lives
@@ -89,6 +90,18 @@ Sample evaluate(Query& q, const Vec3& n)
     tangent_basis(n, t1, t2);
     const Vec3 jt1 = ja.jacobian * t1 + jb.jacobian * t1, jt2 = ja.jacobian * t2 + jb.jacobian * t2;
     s.curvature = dot(t1, jt1) + dot(t2, jt2);
+    if (q.target == PenetrationTarget::LeastOverlap) {
+        // Gradient P w, Hessian P J P − f·P on the tangent plane; a minimum needs it positive definite.
+        const double g1 = dot(t1, w), g2 = dot(t2, w);
+        const double h11 = dot(t1, jt1) - s.f, h12 = dot(t1, jt2), h22 = dot(t2, jt2) - s.f;
+        const double det = h11 * h22 - h12 * h12;
+        s.residual = std::hypot(g1, g2);
+        if (!(h11 > 0.0) || !(det > 0.0) || !std::isfinite(det))
+            return s;
+        s.step = (-(h22 * g1 - h12 * g2) / det) * t1 + (-(h11 * g2 - h12 * g1) / det) * t2;
+        s.solvable = is_finite(s.step);
+        return s;
+    }
     const double k11 = dot(q.e1, jt1), k12 = dot(q.e1, jt2), k21 = dot(q.e2, jt1), k22 = dot(q.e2, jt2);
     const double det = k11 * k22 - k12 * k21;
     if (!(std::abs(det) > 0.0) || !std::isfinite(det) || !(dot(w, q.u) > 0.0))
@@ -97,6 +110,15 @@ Sample evaluate(Query& q, const Vec3& n)
     s.step = d1 * t1 + d2 * t2;
     s.solvable = is_finite(s.step);
     return s;
+}
+
+// Whether a trial sample improves on the current one: a smaller residual off the ray, or a smaller
+// overlap; a separating direction always does.
+bool improves(const Query& q, const Sample& next, const Sample& cur)
+{
+    if (!(next.f > 0.0))
+        return true;
+    return q.target == PenetrationTarget::LeastOverlap ? next.f < cur.f : next.residual < cur.residual;
 }
 
 Penetration result_of(const Query& q, const Sample& s, bool converged)
@@ -115,9 +137,10 @@ Penetration result_of(const Query& q, const Sample& s, bool converged)
 
 } // namespace
 
-Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3& start, int max_evaluations)
+Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3& start,
+                               PenetrationTarget target, int max_evaluations)
 {
-    Query q{&a, &b, to_mat3(a.orientation), to_mat3(b.orientation), {}, {}, {}};
+    Query q{&a, &b, target, to_mat3(a.orientation), to_mat3(b.orientation), {}, {}, {}};
     const Vec3 centre_gap = body_shape_centre(a) - body_shape_centre(b);
     if (!(length(centre_gap) > 0.0))
         return {}; // no ray: MPR's own nudging handles coincident centres
@@ -138,7 +161,7 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
             return result_of(q, cur, false);
         const double scale = len > turn ? turn / len : 1.0;
         const Sample next = evaluate(q, normalized(cur.n + scale * cur.step));
-        if (next.residual < cur.residual || !(next.f > 0.0)) {
+        if (improves(q, next, cur)) {
             cur = next;
             turn = k_max_turn;
         } else {
@@ -147,15 +170,30 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
     }
 }
 
-Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm)
+// Whether a world point lies inside a body (its implicit function, no support-map evaluation).
+bool inside(const BodyView& body, const Vec3& p)
+{
+    const Collider& c = *body.collider;
+    return test_point(c, inv_rotate(body.orientation, p - body.position) + c.com_shape).inside;
+}
+
+// A least-overlap minimum is local: f > 0 there does not prove the bodies overlap (a box sliding off
+// another's edge keeps a positive overlap along the face normal). A point of one body inside the other
+// does; at the true minimum each deepest point lies inside the other body.
+bool proven(const BodyView& a, const BodyView& b, const Penetration& r)
+{
+    return r.hit && (inside(b, r.on_a) || inside(a, r.on_b));
+}
+
+Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm, PenetrationTarget target)
 {
     if (!is_finite(a.position) || !is_finite(a.orientation) || !is_finite(b.position) ||
         !is_finite(b.orientation))
         return {};
     int calls = 0;
     if (length(warm) > 0.0 && is_finite(warm)) {
-        Penetration r = refine_penetration(a, b, warm);
-        if (r.converged)
+        Penetration r = refine_penetration(a, b, warm, target);
+        if (r.converged && (target == PenetrationTarget::RayExit || !r.hit || proven(a, b, r)))
             return r;
         calls += r.support_calls;
     }
@@ -163,9 +201,9 @@ Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& w
     calls += 2 * mpr.support_calls;
     if (!mpr.hit)
         return {.support_calls = calls};
-    Penetration r = refine_penetration(a, b, mpr.normal);
+    Penetration r = refine_penetration(a, b, mpr.normal, target);
     r.support_calls += calls;
-    if (r.converged)
+    if (r.converged && r.hit && (target == PenetrationTarget::RayExit || proven(a, b, r)))
         return r;
     // Newton failed from MPR's normal too: MPR's answer, with the deepest points along its normal.
     r.hit = true;

@@ -16,6 +16,11 @@
 namespace supermodal
 {
 
+/// Which normal the search finds: MPR's (the ray from the shape centres leaves B − A through the point
+/// whose normal it is), or the least overlap, min over n of h_B(n) + h_A(−n), the penetration depth's
+/// own definition (at its minimum, w(n) is parallel to n).
+enum class PenetrationTarget : uint8_t { RayExit, LeastOverlap };
+
 /// What the search found.
 struct Penetration {
     bool hit = false;       ///< The bodies overlap (depth > 0).
@@ -37,10 +42,12 @@ inline constexpr int k_penetration_max_evaluations = 6;
 /// Newton from `start` (unit, from B towards A). Not hit when an evaluated direction separates the
 /// bodies (an exact answer); not converged when the budget ran out or the model broke down.
 [[nodiscard]] Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3& start,
+                                             PenetrationTarget target = PenetrationTarget::RayExit,
                                              int max_evaluations = k_penetration_max_evaluations);
 
 /// The pair's penetration: Newton from `warm` (the pair's last normal, world; zero for none); else
 /// from MPR's normal; MPR's own answer when neither converges.
-[[nodiscard]] Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm);
+[[nodiscard]] Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm,
+                                           PenetrationTarget target = PenetrationTarget::RayExit);
 
 } // namespace supermodal

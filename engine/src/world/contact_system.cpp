@@ -238,8 +238,10 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
     // Pairs are sorted by key, so compacting in pair order keeps the manifolds sorted too. The counts
     // are summed here, in pair order, not by the threads.
     for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
-        if (io.pair_manifold[pi].count > 0)
-            io.manifolds.push_back(io.pair_manifold[pi]);
+        // Kept while touching, or apart with a direction that separated it (the next query's start).
+        const PairManifold& m = io.pair_manifold[pi];
+        if (m.count > 0 || length(m.normal) > 0.0)
+            io.manifolds.push_back(m);
         io.support_calls += static_cast<uint64_t>(io.pair_cost[pi].support_calls);
         io.touching_pairs += io.pair_points[pi].end > io.pair_points[pi].begin ? 1 : 0;
     }
