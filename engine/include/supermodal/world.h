@@ -79,6 +79,7 @@ struct StepProfile {
     /// each (MPR's Minkowski support is two) [-]. Deterministic: the same for any thread count.
     uint64_t support_calls = 0;
     uint64_t touching_pairs = 0; ///< Pairs with contact points, summed over the last step's substeps [-].
+    uint64_t touching_support_calls = 0; ///< The part of support_calls made by those pairs' queries [-].
 };
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.

@@ -357,10 +357,13 @@ bool face_height(const ShapeDef& shape, int axis, double side, Vec3& p)
 {
     const Vec3& a = shape.radii;
     const double e1 = shape.epsilon1, e2 = shape.epsilon2;
+    // x^(ε2/ε1) is x itself for equal exponents (a rounded box's usual case): one power fewer.
+    auto level = [&](double x) { return e1 == e2 ? x : std::pow(x, e2 / e1); };
+    auto level_inverse = [&](double x) { return e1 == e2 ? x : std::pow(x, e1 / e2); };
     double h = 0.0;
     if (axis == 2) {
-        const double s = std::pow(std::abs(p.x) / a.x, 2.0 / e2) + std::pow(std::abs(p.y) / a.y, 2.0 / e2);
-        const double g = std::pow(s, e2 / e1);
+        const double g =
+            level(std::pow(std::abs(p.x) / a.x, 2.0 / e2) + std::pow(std::abs(p.y) / a.y, 2.0 / e2));
         if (!(g < 1.0))
             return false;
         h = std::pow(1.0 - g, 0.5 * e1);
@@ -369,7 +372,7 @@ bool face_height(const ShapeDef& shape, int axis, double side, Vec3& p)
         const double zt = std::pow(std::abs(p.z) / a.z, 2.0 / e1);
         if (!(zt < 1.0))
             return false;
-        const double rem = std::pow(1.0 - zt, e1 / e2) - std::pow(std::abs(p[inner]) / a[inner], 2.0 / e2);
+        const double rem = level_inverse(1.0 - zt) - std::pow(std::abs(p[inner]) / a[inner], 2.0 / e2);
         if (!(rem > 0.0))
             return false;
         h = std::pow(rem, 0.5 * e2);

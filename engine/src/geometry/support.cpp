@@ -88,11 +88,11 @@ DualResult dual_level(double c0, double c1, double eps, bool hessian = false)
         }
         return out;
     }
-    // Three powers instead of five (the support map of flat-faced bodies spent half the rounded-box
+    // Two powers instead of five (the support map of flat-faced bodies spent half the rounded-box
     // pile's time in pow): the largest ratio r_k is exactly 1, so with t = r_o^q (o the other),
     // sum = 1 + t ∈ [1, 2] and w = sum^(−ε/2):
-    //   ‖c‖_q = m·sum^(1/q) = m·sum·w                (1/q = 1 − ε/2),
-    //   v_i = (r_i^q / sum)^((q−1)/q) = r_i^(q·ε/2)·w  ((q−1)/q = ε/2).
+    //   ‖c‖_q = m·sum^(1/q) = m·sum·w                        (1/q = 1 − ε/2),
+    //   v_i = (r_i^q / sum)^((q−1)/q) = r_i^(q·ε/2)·w = (t/r_o)·w  ((q−1)/q = ε/2, q·ε/2 = q − 1).
     const double q = 2.0 / (2.0 - eps);
     const int k = r[0] >= r[1] ? 0 : 1, o = 1 - k;
     const double t = std::pow(r[o], q);
@@ -100,7 +100,8 @@ DualResult dual_level(double c0, double c1, double eps, bool hessian = false)
     const double w = std::pow(sum, -0.5 * eps);
     out.norm = m * sum * w;
     out.v[k] = sign[k] * w;
-    out.v[o] = sign[o] * std::pow(r[o], 0.5 * q * eps) * w;
+    // r_o^(qε/2) = r_o^(q−1) = t / r_o: no power of its own.
+    out.v[o] = r[o] > 0.0 ? sign[o] * (t / r[o]) * w : 0.0;
     if (hessian)
         dual_hessian(out, q, k, m, r[o], t, w, sum, sign);
     return out;

@@ -203,6 +203,7 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     begin_step_events(io.events, io.pairs.size());
     io.support_calls = 0;
     io.touching_pairs = 0;
+    io.touching_support_calls = 0;
     return substeps_needed(def, reg, io);
 }
 
@@ -242,8 +243,11 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
         const PairManifold& m = io.pair_manifold[pi];
         if (m.count > 0 || length(m.normal) > 0.0)
             io.manifolds.push_back(m);
-        io.support_calls += static_cast<uint64_t>(io.pair_cost[pi].support_calls);
-        io.touching_pairs += io.pair_points[pi].end > io.pair_points[pi].begin ? 1 : 0;
+        const auto calls = static_cast<uint64_t>(io.pair_cost[pi].support_calls);
+        const bool touching = io.pair_points[pi].end > io.pair_points[pi].begin;
+        io.support_calls += calls;
+        io.touching_pairs += touching ? 1 : 0;
+        io.touching_support_calls += touching ? calls : 0;
     }
 }
 

@@ -146,6 +146,7 @@ void World::Impl::step()
     }
     profile.support_calls = contact.support_calls;
     profile.touching_pairs = contact.touching_pairs;
+    profile.touching_support_calls = contact.touching_support_calls;
     run(Stage::Events, [&] {
         clear_forces(reg);
         clear_modal_forces(reg);
