@@ -9,7 +9,9 @@
 //
 // The floor and the four walls are static half-spaces (planes) at the inner faces of the 0.1 m thick
 // walls of the protocol: the same for everything inside the box, and nothing inside can tunnel
-// through a half-space. Arguments: N, threads, substeps per step.
+// through a half-space. rounded_box_stacked places the rounded boxes as a resting pile instead
+// (columns of four, face on face): the narrowphase of a pile at rest. Arguments: N, threads,
+// substeps per step.
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
 #include "supermodal/tasks.h"
@@ -85,7 +87,8 @@ class TimedTasks final : public sm::TaskSystem
     std::vector<double> m_part_s;
 };
 
-enum class Shape { Sphere, Ellipsoid, RoundedBox };
+// RoundedBoxStacked: the rounded boxes placed as a resting pile instead of dropped (stacked_pile).
+enum class Shape { Sphere, Ellipsoid, RoundedBox, RoundedBoxStacked };
 
 sm::ShapeDef pile_shape(Shape shape)
 {
@@ -98,6 +101,7 @@ sm::ShapeDef pile_shape(Shape shape)
         s.radii = {0.06, 0.04, 0.03};
         break;
     case Shape::RoundedBox:
+    case Shape::RoundedBoxStacked:
         s.radii = {0.05, 0.05, 0.05};
         s.epsilon1 = s.epsilon2 = 0.3;
         break;
@@ -126,6 +130,37 @@ void add_wall(sm::World& w, sm::Vec3 normal, double offset)
     (void)sm::create_body(w, d);
 }
 
+constexpr int k_stacked_layers = 4;       // layers of the resting pile [-]
+constexpr double k_stacked_pitch = 0.102; // its grid pitch: 2 mm between neighbouring columns [m]
+
+// A resting pile: the rounded boxes in columns of k_stacked_layers, face on face, 0.1 mm apart, turned
+// by up to ±0.01 rad and shifted by up to ±1 mm, in a box of planes 1 mm outside the outer columns.
+void add_stacked_pile(sm::World& w, int n)
+{
+    const int per_layer = (n + k_stacked_layers - 1) / k_stacked_layers;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
+    const double half = 0.5 * side * k_stacked_pitch;
+    add_wall(w, {0, 1, 0}, 0.0);
+    add_wall(w, {1, 0, 0}, -half);
+    add_wall(w, {-1, 0, 0}, -half);
+    add_wall(w, {0, 0, 1}, -half);
+    add_wall(w, {0, 0, -1}, -half);
+    Lcg rng;
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / per_layer, cell = i % per_layer;
+        sm::BodyDef d = sm::default_body_def();
+        d.shape = pile_shape(Shape::RoundedBoxStacked);
+        d.density = 1000.0;
+        d.friction = 0.5;
+        d.position = {-half + k_stacked_pitch * (cell % side + 0.5) + 1e-3 * rng.next(),
+                      0.0501 + 0.1001 * layer,
+                      -half + k_stacked_pitch * (cell / side + 0.5) + 1e-3 * rng.next()};
+        d.orientation =
+            sm::normalized(sm::Quat{1.0, 0.005 * rng.next(), 0.005 * rng.next(), 0.005 * rng.next()});
+        (void)sm::create_body(w, d);
+    }
+}
+
 sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps)
 {
     sm::WorldDef def = sm::default_world_def();
@@ -133,6 +168,10 @@ sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks
     def.substep_count = substeps;
     def.task_system = tasks;
     sm::World w(def);
+    if (shape == Shape::RoundedBoxStacked) {
+        add_stacked_pile(w, n);
+        return w;
+    }
     const int per_layer = (n + k_layers - 1) / k_layers;
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
     const double half = 0.5 * side * k_pitch; // inner half-width of the box [m]
@@ -245,3 +284,4 @@ BENCHMARK_CAPTURE(BM_Pile, sphere, Shape::Sphere)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid_substeps, Shape::Ellipsoid)->Apply(substep_args);
+BENCHMARK_CAPTURE(BM_Pile, rounded_box_stacked, Shape::RoundedBoxStacked)->Apply(pile_args);
