@@ -162,6 +162,30 @@ void add_point(FaceContact& fc, const Vec3& on_a, const Vec3& on_b, double depth
         fc.points[static_cast<size_t>(fc.count++)] = {on_a, on_b, depth};
 }
 
+// Drops the vertex whose loss shrinks the polygon least until four are left: the clipped patch of a
+// twisted face is an octagon whose vertices come in close pairs, and the manifold keeps four points
+// anyway, so this spares the lifts of the other four.
+void keep_four(Polygon& poly, const Vec3& normal)
+{
+    while (poly.n > 4) {
+        int drop = 0;
+        double least = INFINITY;
+        for (int i = 0; i < poly.n; ++i) {
+            const Vec3& prev = poly.v[static_cast<size_t>((i + poly.n - 1) % poly.n)];
+            const Vec3& next = poly.v[static_cast<size_t>((i + 1) % poly.n)];
+            const double area =
+                std::abs(dot(cross(poly.v[static_cast<size_t>(i)] - prev, next - prev), normal));
+            if (area < least) {
+                least = area;
+                drop = i;
+            }
+        }
+        for (int i = drop; i + 1 < poly.n; ++i)
+            poly.v[static_cast<size_t>(i)] = poly.v[static_cast<size_t>(i + 1)];
+        --poly.n;
+    }
+}
+
 // The reference face's side of the query: its body and face, and the other (incident) body.
 struct Reference {
     const Frame* ref;
@@ -201,6 +225,7 @@ int clipped_points(const Reference& r, FaceContact& fc)
         poly = clip(poly, e, centre + ref_size.half[i]);
         poly = clip(poly, -1.0 * e, -centre + ref_size.half[i]);
     }
+    keep_four(poly, r.face.normal);
     int touching = 0;
     for (int i = 0; i < poly.n; ++i) {
         Vec3 on_inc, on_ref;
