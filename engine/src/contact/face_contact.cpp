@@ -196,6 +196,15 @@ struct Reference {
     bool ref_is_a;
 };
 
+// Appends a contact seen from the reference and the incident body, in the query's A, B order.
+void add_point(const Reference& r, const Vec3& on_ref, const Vec3& on_inc, double depth, FaceContact& fc)
+{
+    if (r.ref_is_a)
+        add_point(fc, on_ref, on_inc, depth);
+    else
+        add_point(fc, on_inc, on_ref, depth);
+}
+
 // Clips the incident patch against the reference patch and appends the touching corners, on both true
 // surfaces; returns how many (0 when the overlap under the reference's pole is not positive).
 int clipped_points(const Reference& r, FaceContact& fc)
@@ -203,9 +212,8 @@ int clipped_points(const Reference& r, FaceContact& fc)
     const Face inc_face = face_towards(*r.inc, -1.0 * r.face.normal);
     // The patches' size comes from the overlap under the reference's pole, which a tilt of the
     // incident body barely changes (the overlap at its deepest point grows with the tilt, and patches
-    // sized by it made the pair's force fall as a box tipped).
-    // Where the incident body does not reach under that pole (the bodies are offset), the
-    // overlap along the normal stands in.
+    // sized by it made the pair's force fall as a box tipped). Where the incident body does not reach
+    // under that pole (the bodies are offset), the overlap along the normal stands in.
     Vec3 under;
     const double under_pole =
         lift(*r.inc, inc_face, r.face.pole, under) ? dot(r.face.normal, r.face.pole - under) : r.overlap;
@@ -236,10 +244,7 @@ int clipped_points(const Reference& r, FaceContact& fc)
         if (!(depth > 0.0))
             continue;
         ++touching;
-        if (r.ref_is_a)
-            add_point(fc, on_ref, on_inc, depth);
-        else
-            add_point(fc, on_inc, on_ref, depth);
+        add_point(r, on_ref, on_inc, depth, fc);
     }
     return touching;
 }
@@ -254,10 +259,7 @@ bool incident_point(const Reference& r, const Vec3& q, FaceContact& fc)
     const double depth = dot(r.face.normal, on_ref - on_inc);
     if (!(depth > 0.0))
         return false;
-    if (r.ref_is_a)
-        add_point(fc, on_ref, on_inc, depth);
-    else
-        add_point(fc, on_inc, on_ref, depth);
+    add_point(r, on_ref, on_inc, depth, fc);
     return true;
 }
 
@@ -277,11 +279,7 @@ bool feature_on_face(const Reference& r, FaceContact& fc)
     const double w = flat_half_length(r.inc->shape(), j, 2.0 * k_face_patch_drop * r.overlap);
     for (double side : {1.0, -1.0})
         (void)incident_point(r, r.inc_lowest + (side * w) * t, fc);
-    const double depth = dot(r.face.normal, on_ref - r.inc_lowest);
-    if (r.ref_is_a)
-        add_point(fc, on_ref, r.inc_lowest, depth);
-    else
-        add_point(fc, r.inc_lowest, on_ref, depth);
+    add_point(r, on_ref, r.inc_lowest, dot(r.face.normal, on_ref - r.inc_lowest), fc);
     return true;
 }
 
@@ -450,12 +448,8 @@ FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess
     Vec3 on_ref;
     if (lift(*r.ref, r.face, r.inc_lowest, on_ref)) {
         const double depth = dot(r.face.normal, on_ref - r.inc_lowest);
-        if (depth > 0.0) {
-            if (ref_a)
-                add_point(fc, on_ref, r.inc_lowest, depth);
-            else
-                add_point(fc, r.inc_lowest, on_ref, depth);
-        }
+        if (depth > 0.0)
+            add_point(r, on_ref, r.inc_lowest, depth, fc);
     }
     fc.kind = FaceContact::Kind::Faces;
     return fc;

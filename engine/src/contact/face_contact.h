@@ -16,8 +16,11 @@
 // clipped against the reference's side planes (Sutherland–Hodgman), and each clipped corner is moved
 // onto the true surfaces: along the incident body's axis onto it, then along the reference's onto that,
 // so every point is a material point of both bodies and its depth is their overlap along the normal.
-// The deepest point joins the corners. A face contact needs two touching corners; a contact on a
-// rounded edge, or a patch that overhangs the other face, is left to the general path.
+// The deepest point joins the corners (at most four of them are kept before the lifts). A face contact
+// needs two touching corners. Otherwise: an edge or corner of the incident body whose deepest point
+// lies over the reference's flat part gets that point and the ends of the edge's flat part (moved onto
+// the body along the normal); two edges crossing get one point on the axis across both; a pair apart
+// keeps its separating direction for the next query; the rest goes to the search of penetration.h.
 #pragma once
 
 #include "contact/narrowphase.h"
@@ -29,7 +32,8 @@ namespace supermodal
 
 /// Flat-faced bodies take the face path when both exponents are at most this [-].
 inline constexpr double k_face_max_exponent = 0.5;
-/// Each face's patch reaches where its surface has dropped this fraction of the pair's depth [-].
+/// Each face's patch reaches where its surface has dropped this fraction of the overlap under the
+/// reference's pole [-] (a flat plane leaves twice as much to the body's face).
 inline constexpr double k_face_patch_drop = 0.25;
 /// The reference face changes only when the other face's overlap is smaller by this fraction [-], so
 /// nearly parallel faces do not trade the normal back and forth.

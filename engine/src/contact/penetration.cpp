@@ -12,21 +12,10 @@ namespace supermodal
 namespace
 {
 
-// Largest turn of the normal in one Newton step [rad]; a step whose residual grew is retried at a
+// Largest turn of the normal in one Newton step [rad]; a step that does not improve is retried at a
 // quarter of its length (flat faces make the map from normal to support point steep).
 constexpr double k_max_turn = 0.25;
 constexpr double k_shrink = 0.25;
-// Sum of the two support points' radii of curvature, relative to the bodies' largest radii, past which
-// the search gives up for MPR [-]. Near a flat face's normal (ε < 1) the radius grows as a negative
-// power of the angle to it, and so does the step from a normal to its support point: Newton's model
-// holds over a sliver only (the face path, manifold.cpp, takes those contacts).
-constexpr double k_flat_radius_rel = 1e300;
-
-double largest_radius(const Collider& c)
-{
-    const Vec3& r = c.shape.radii;
-    return std::max({r.x, r.y, r.z});
-}
 
 // One body's support along a world direction, relative to `origin` (A's position, so that far-away
 // pairs lose no digits), with its world Jacobian.
@@ -62,14 +51,13 @@ struct Query {
 };
 
 // One evaluation at a normal: the Minkowski support w (relative to A's position: on_b − on_a), its
-// residual off the ray and the Newton step that would put it on the ray.
+// residual (off the ray, or the overlap's tangential gradient) and Newton's step to make it zero.
 struct Sample {
     Vec3 n{}, on_a{}, on_b{}; // on_a, on_b relative to A's position [m]
     double f = 0.0;           // overlap along n [m]
-    double residual = 0.0;    // |w − (w·u) u| [m]
+    double residual = 0.0;    // |w − (w·u) u|, or |P w| for the least overlap [m]
     Vec3 step{};              // Newton's turn of n, tangent [rad]
-    bool solvable = false;    // the 2×2 system was regular and w points along +u
-    double curvature = 0.0;   // trace of J_A + J_B on the tangent plane [m]
+    bool solvable = false;    // the 2×2 system was regular (ray: and w points along +u)
 };
 
 Sample evaluate(Query& q, const Vec3& n)
@@ -89,7 +77,6 @@ Sample evaluate(Query& q, const Vec3& n)
     Vec3 t1, t2;
     tangent_basis(n, t1, t2);
     const Vec3 jt1 = ja.jacobian * t1 + jb.jacobian * t1, jt2 = ja.jacobian * t2 + jb.jacobian * t2;
-    s.curvature = dot(t1, jt1) + dot(t2, jt2);
     if (q.target == PenetrationTarget::LeastOverlap) {
         // Gradient P w, Hessian P J P − f·P on the tangent plane; a minimum needs it positive definite.
         const double g1 = dot(t1, w), g2 = dot(t2, w);
@@ -146,13 +133,12 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
         return {}; // no ray: MPR's own nudging handles coincident centres
     q.u = normalized(centre_gap);
     tangent_basis(q.u, q.e1, q.e2);
-    const double flat = k_flat_radius_rel * (largest_radius(*a.collider) + largest_radius(*b.collider));
     Sample cur = evaluate(q, normalized(start));
     double turn = k_max_turn;
     while (true) {
         if (!(cur.f > 0.0)) // a separating direction: no contact, exactly
             return result_of(q, cur, true);
-        if (!cur.solvable || !(cur.curvature <= flat))
+        if (!cur.solvable)
             return result_of(q, cur, false);
         const double len = length(cur.step);
         if (len <= k_penetration_angle_tolerance)
@@ -170,6 +156,9 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
     }
 }
 
+namespace
+{
+
 // Whether a world point lies inside a body (its implicit function, no support-map evaluation).
 bool inside(const BodyView& body, const Vec3& p)
 {
@@ -184,6 +173,8 @@ bool proven(const BodyView& a, const BodyView& b, const Penetration& r)
 {
     return r.hit && (inside(b, r.on_a) || inside(a, r.on_b));
 }
+
+} // namespace
 
 Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm, PenetrationTarget target)
 {

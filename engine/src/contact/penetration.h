@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Penetration normal of two overlapping convex bodies, as MPR defines it, found by Newton from the
-// pair's last normal. In the Minkowski difference M = B − A (points b − a, with the origin inside when
-// the bodies overlap), MPR follows the ray from the interior point c_B − c_A (the shape centres)
-// through the origin to where it leaves M, and reports the surface normal n there (from B towards A)
-// and the overlap along it, f(n) = n·w(n), with w(n) = s_B(n) − s_A(−n) the support point of M. So its
-// answer is the n whose support point w(n) lies on that ray: w(n) parallel to u = c_A − c_B. Newton
-// solves that on the unit sphere with the support maps' curvature (support_jet: ∂w/∂n = J_A + J_B).
-// Started from the pair's normal of the last substep (state), a slowly moving pair converges in one or
-// two evaluations (two support-map calls each) instead of MPR's dozens. MPR (libccd) gives the start
-// when there is none or Newton does not converge.
+// Penetration normal of two overlapping convex bodies, found by Newton from the pair's last normal. In
+// the Minkowski difference M = B − A (points b − a, with the origin inside when the bodies overlap),
+// w(n) = s_B(n) − s_A(−n) is M's support point and f(n) = n·w(n) the overlap along n (n from B towards
+// A). MPR follows the ray from the interior point c_B − c_A (the shape centres) through the origin to
+// where it leaves M and reports the normal there: the n whose w(n) lies on that ray (RayExit). The
+// least overlap, min over n of f(n), is the penetration depth's own definition (LeastOverlap; at it
+// w(n) is parallel to n). Newton solves either on the unit sphere with the support maps' curvature
+// (support_jet: ∂w/∂n = J_A + J_B). Started from the pair's normal of the last substep (state), a
+// slowly moving pair converges in one to three evaluations (two support-map calls each) instead of
+// MPR's dozens. MPR (libccd) gives the start when there is none or Newton does not converge.
 #pragma once
 
 #include "contact/narrowphase.h"
