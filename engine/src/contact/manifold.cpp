@@ -336,10 +336,10 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
     // overlaps of the pile's ellipsoids, and the exact one changes how their pile settles
     // (docs/contact.md), so they change over on their own.
     const bool flat = keeps_old_points(*a.collider, b.collider);
-    const Vec3 warm = io.count > 0 && flat ? rotate(a.orientation, io.normal) : Vec3{};
     // Bodies with face patches get here on rounded edges and corners, where the least overlap is the
     // contact's own normal and MPR's centre ray often leaves through another face of B − A.
     const bool faces = has_face_patches(*a.collider) && has_face_patches(*b.collider);
+    const Vec3 warm = (io.count > 0 || faces) && flat ? rotate(a.orientation, io.normal) : Vec3{};
     const PenetrationTarget target = faces ? PenetrationTarget::LeastOverlap : PenetrationTarget::RayExit;
     const Penetration pen = flat ? find_penetration(a, b, warm, target) : mpr_only(a, b);
     calls += pen.support_calls;
