@@ -228,6 +228,26 @@ void pile_args(benchmark::internal::Benchmark* b)
 }
 
 // Penetration against cost: the penalty frequency is capped at a tenth of the substep rate, so k
+struct TimedSteps {
+    double seconds = 0.0; // wall time of the steps [s]
+    double ms = 0.0;      // wall time per step [ms]
+    double cpu_ms = 0.0;  // process CPU time per step [ms]
+};
+
+// Runs `steps` steps of w and times them.
+TimedSteps time_steps(sm::World& w, int steps)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = process_cpu_seconds();
+    for (int i = 0; i < steps; ++i)
+        w.step();
+    TimedSteps t;
+    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    t.ms = 1e3 * t.seconds / steps;
+    t.cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / steps;
+    return t;
+}
+
 // grows with the square of the substeps and the overlap under a load shrinks with it.
 void substep_args(benchmark::internal::Benchmark* b)
 {
@@ -246,15 +266,10 @@ void BM_PileSettled(benchmark::State& st, Shape shape)
         sm::World w = make_pile(shape, n, std::make_shared<TimedTasks>(1), 1, sleep_speed);
         for (int i = 0; i < k_settle_steps; ++i)
             w.step();
-        const auto start = std::chrono::steady_clock::now();
-        const double cpu_start = process_cpu_seconds();
-        for (int i = 0; i < k_timed_steps; ++i)
-            w.step();
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        st.SetIterationTime(seconds);
-        ms = 1e3 * seconds / k_timed_steps;
-        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        const TimedSteps t = time_steps(w, k_timed_steps);
+        st.SetIterationTime(t.seconds);
+        ms = t.ms;
+        cpu_ms = t.cpu_ms;
         sleeping = static_cast<double>(sm::world_sleeping_count(w));
         pairs = static_cast<double>(w.profile().pair_count);
     }
@@ -285,15 +300,10 @@ void BM_RestingGrid(benchmark::State& st)
         }
         for (int i = 0; i < 480; ++i)
             w.step();
-        const auto start = std::chrono::steady_clock::now();
-        const double cpu_start = process_cpu_seconds();
-        for (int i = 0; i < k_timed_steps; ++i)
-            w.step();
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        st.SetIterationTime(seconds);
-        ms = 1e3 * seconds / k_timed_steps;
-        cpu_ms = 1e3 * (process_cpu_seconds() - cpu_start) / k_timed_steps;
+        const TimedSteps t = time_steps(w, k_timed_steps);
+        st.SetIterationTime(t.seconds);
+        ms = t.ms;
+        cpu_ms = t.cpu_ms;
         sleeping = static_cast<double>(sm::world_sleeping_count(w));
     }
     st.counters["ms_per_step"] = ms;

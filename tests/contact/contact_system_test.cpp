@@ -26,34 +26,13 @@ sm::World make_world(double dt = 0.002, sm::ContactPath path = sm::ContactPath::
     return sm::World(def);
 }
 
-sm::Entity add_plane(sm::World& w, sm::Vec3 normal = {0, 1, 0}, double offset = 0.0, double friction = 0.5)
-{
-    sm::BodyDef d = sm::default_body_def();
-    d.motion = sm::MotionType::Static;
-    d.shape.type = sm::ShapeType::Plane;
-    d.shape.plane_normal = normal;
-    d.shape.plane_offset = offset;
-    d.friction = friction;
-    return sm::create_body(w, d);
-}
+using sm::test::about_z;
+using sm::test::add_plane;
 
 sm::Entity add_body(sm::World& w, sm::Vec3 radii, double eps, sm::Vec3 pos, sm::Quat q = {},
                     double friction = 0.5, double restitution = 0.2)
 {
-    sm::BodyDef d = sm::default_body_def();
-    d.shape.radii = radii;
-    d.shape.epsilon1 = d.shape.epsilon2 = eps;
-    d.position = pos;
-    d.orientation = q;
-    d.friction = friction;
-    d.restitution = restitution;
-    return sm::create_body(w, d);
-}
-
-// Rotation about z by angle [rad].
-sm::Quat about_z(double angle)
-{
-    return {std::cos(0.5 * angle), 0, 0, std::sin(0.5 * angle)};
+    return sm::test::add_superquadric(w, radii, eps, pos, q, friction, restitution);
 }
 
 struct RestCase {
@@ -75,7 +54,7 @@ TEST_P(ContactRest, BodyRestsOnPlaneForTenSeconds)
     // At the default contact frequency (1/(10 h) = 50 Hz) the static sink is g/ω² ≈ 0.1 mm.
     const RestCase c = GetParam();
     sm::World w = make_world(0.002, c.path);
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     // Resting on its y radius (the world's up axis), dropped from 1 mm.
     const sm::Entity b = add_body(w, c.radii, c.eps, {0.3, c.radii.y + 1e-3, -0.2});
     run_steps(w, 5000);
@@ -105,7 +84,7 @@ TEST(Contact, ConcaveStarSettlesOnPlane)
     // ε = 3.5: a star with six thin arms. Dropped tilted, it must come to rest on its arms (no support
     // map exists, so only the sampling path sees it), finite and above the plane.
     sm::World w = make_world();
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity b = add_body(w, {0.1, 0.1, 0.1}, 3.5, {0, 0.2, 0}, {0.95, 0.2, 0.1, 0.2});
     run_steps(w, 5000);
     EXPECT_TRUE(sm::is_finite(sm::body_position(w, b)));
@@ -204,7 +183,7 @@ TEST(Contact, FastBodyIsStoppedWithinHalfTheThinnerBody)
     // stopping rule adds substeps; the overlap then peaks at 31 mm (measured; the v/ω estimate of
     // 20 mm ignores that the lower body also sinks into the floor), under the 60 mm thickness.
     sm::World w = make_world(1.0 / 240.0);
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Vec3 radii{0.06, 0.04, 0.03};
     (void)add_body(w, radii, 1.0, {0, 0.04, 0});
     const sm::Entity top = add_body(w, radii, 1.0, {0, 0.2, 0});
@@ -236,7 +215,7 @@ TEST(Contact, SameSceneSameHashAndSnapshotKeepsAnchors)
 {
     auto build = [] {
         sm::World w = make_world();
-        add_plane(w);
+        add_plane(w, {0, 1, 0});
         for (int i = 0; i < 4; ++i)
             add_body(w, {0.1, 0.08, 0.06}, 0.5 + 0.2 * i, {0.05 * i, 0.15 + 0.21 * i, 0.02 * i},
                      {0.9, 0.1 * i, 0.3, 0.1});
@@ -279,7 +258,7 @@ TEST(Contact, BounceHeightIsRestitutionSquaredTimesDropHeight)
     // 1.32 e² h, and other drop heights scatter both paths (docs/contact.md, known problems).
     const double e = 0.5, h = 0.5, r = 0.05;
     sm::World w = make_world(0.0005, sm::ContactPath::Sampling);
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity b = add_body(w, {r, r, r}, 1.0, {0, r + h, 0}, {}, 0.0, e);
     double apex = 0.0;
     bool bounced = false;

@@ -5,6 +5,8 @@
 #include "supermodal/body.h"
 #include "supermodal/world.h"
 
+#include <cmath>
+
 namespace supermodal::test
 {
 
@@ -39,6 +41,39 @@ inline BodyDef soft_ball_def(Vec3 position, double damping_ratio)
     def.young = 2e5;
     def.modal.damping_ratio = damping_ratio;
     return def;
+}
+
+/// A static plane through offset·normal [m] with the given friction coefficient [-].
+inline Entity add_plane(World& world, Vec3 normal, double offset = 0.0, double friction = 0.5)
+{
+    BodyDef def = default_body_def();
+    def.motion = MotionType::Static;
+    def.shape.type = ShapeType::Plane;
+    def.shape.plane_normal = normal;
+    def.shape.plane_offset = offset;
+    def.friction = friction;
+    return create_body(world, def);
+}
+
+/// A dynamic superquadric with both exponents eps [-], radii [m], pose, friction and restitution [-].
+inline Entity add_superquadric(World& world, Vec3 radii, double eps, Vec3 position, Quat orientation,
+                               double friction, double restitution, double density = 1000.0)
+{
+    BodyDef def = default_body_def();
+    def.shape.radii = radii;
+    def.shape.epsilon1 = def.shape.epsilon2 = eps;
+    def.position = position;
+    def.orientation = orientation;
+    def.friction = friction;
+    def.restitution = restitution;
+    def.density = density;
+    return create_body(world, def);
+}
+
+/// Rotation about z by angle [rad].
+inline Quat about_z(double angle)
+{
+    return {std::cos(0.5 * angle), 0, 0, std::sin(0.5 * angle)};
 }
 
 /// Runs n fixed steps.

@@ -30,33 +30,13 @@ sm::WorldDef soft_def(double dt, sm::ContactPath path = sm::ContactPath::Auto)
     return def;
 }
 
-sm::Entity add_plane(sm::World& w, sm::Vec3 normal = {0, 1, 0}, double friction = 0.5)
-{
-    sm::BodyDef d = sm::default_body_def();
-    d.motion = sm::MotionType::Static;
-    d.shape.type = sm::ShapeType::Plane;
-    d.shape.plane_normal = normal;
-    d.friction = friction;
-    return sm::create_body(w, d);
-}
+using sm::test::about_z;
+using sm::test::add_plane;
 
 sm::Entity add_body(sm::World& w, sm::Vec3 radii, double eps, sm::Vec3 pos, sm::Quat q = {},
                     double friction = 0.5, double restitution = 0.0, double density = 1000.0)
 {
-    sm::BodyDef d = sm::default_body_def();
-    d.shape.radii = radii;
-    d.shape.epsilon1 = d.shape.epsilon2 = eps;
-    d.position = pos;
-    d.orientation = q;
-    d.friction = friction;
-    d.restitution = restitution;
-    d.density = density;
-    return sm::create_body(w, d);
-}
-
-sm::Quat about_z(double angle)
-{
-    return {std::cos(0.5 * angle), 0, 0, std::sin(0.5 * angle)};
+    return sm::test::add_superquadric(w, radii, eps, pos, q, friction, restitution, density);
 }
 
 struct RestCase {
@@ -78,7 +58,7 @@ TEST_P(SoftRest, BodyRestsOnPlaneAtSixtyHertzWithOneSubstep)
     // within 1% of the smallest radius. At rest it neither drifts nor moves.
     const RestCase c = GetParam();
     sm::World w(soft_def(k_game_dt, c.path));
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity b = add_body(w, c.radii, c.eps, {0.3, c.radii.y + 1e-3, -0.2});
     run_steps(w, 600);
     const double smallest = std::min({c.radii.x, c.radii.y, c.radii.z});
@@ -106,7 +86,7 @@ TEST(SoftContact, StiffSpringAtLongStepStaysStable)
     sm::WorldDef def = soft_def(k_game_dt, sm::ContactPath::SupportMap);
     def.contact.soft.frequency_hz = 1000.0;
     sm::World w(def);
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity b = add_body(w, {0.1, 0.1, 0.1}, 1.0, {0, 0.15, 0});
     double highest = 0.0;
     for (int i = 0; i < 300; ++i) {
@@ -126,7 +106,7 @@ TEST(SoftContact, BlockOnInclineBelowFrictionAngleStaysPut)
     const double theta = std::atan(0.4);
     sm::World w(soft_def(k_game_dt));
     const sm::Vec3 up{-std::sin(theta), std::cos(theta), 0};
-    add_plane(w, up, 0.5);
+    add_plane(w, up, 0.0, 0.5);
     const sm::Entity b = add_body(w, {0.1, 0.05, 0.1}, 0.1, 0.0501 * up, about_z(theta), 0.5);
     run_steps(w, 30);
     const sm::Vec3 p0 = sm::body_position(w, b);
@@ -141,7 +121,7 @@ TEST(SoftContact, BlockOnInclineAboveFrictionAngleSlidesAtCoulombRate)
     sm::World w(soft_def(k_game_dt));
     const sm::Vec3 up{-std::sin(theta), std::cos(theta), 0};
     const sm::Vec3 down{-std::cos(theta), -std::sin(theta), 0};
-    add_plane(w, up, mu);
+    add_plane(w, up, 0.0, mu);
     const sm::Entity b = add_body(w, {0.1, 0.05, 0.1}, 0.1, 0.0501 * up, about_z(theta), mu);
     run_steps(w, 30);
     const double v0 = sm::dot(sm::body_linear_velocity(w, b), down);
@@ -158,7 +138,7 @@ TEST(SoftContact, BounceLeavesAtRestitutionTimesImpactSpeed)
     // it leaves from there (at 1/240 s, 13 mm: the apex measured 7% low; at 1 ms, 3 mm).
     const double e = 0.5, drop = 0.5, r = 0.05;
     sm::World w(soft_def(0.001, sm::ContactPath::SupportMap));
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity b = add_body(w, {r, r, r}, 1.0, {0, r + drop, 0}, {}, 0.0, e);
     double apex = 0.0;
     bool bounced = false;
@@ -182,7 +162,7 @@ TEST(SoftContact, LightBoxOnHeavyBoxRestsAtGameStep)
     // springs' sink (g/ω², 0.07 mm under the automatic 60 Hz static spring, 0.28 mm at 30 Hz between
     // the boxes) and the 1 mm the narrowphase's manifold may misplace on the rounded faces.
     sm::World w(soft_def(k_game_dt, sm::ContactPath::SupportMap));
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     const sm::Entity low = add_body(w, {0.1, 0.1, 0.1}, 0.3, {0, 0.1, 0}, {}, 0.5, 0.0, 1e6);
     const sm::Entity high = add_body(w, {0.1, 0.1, 0.1}, 0.3, {0, 0.3, 0}, {}, 0.5, 0.0, 1000.0);
     run_steps(w, 300);
@@ -197,7 +177,7 @@ TEST(SoftContact, SameHashOnOneAndTwoThreads)
         sm::WorldDef def = soft_def(1.0 / 240.0);
         def.thread_count = threads;
         sm::World w(def);
-        add_plane(w);
+        add_plane(w, {0, 1, 0});
         for (int i = 0; i < 60; ++i)
             add_body(w, {0.05, 0.04, 0.03}, i % 2 == 0 ? 1.0 : 0.3,
                      {0.09 * (i % 5), 0.1 + 0.09 * (i / 5), 0.09 * ((i / 5) % 3)});
@@ -215,7 +195,7 @@ TEST(SoftContact, BouncingModalBallDoesNotGainEnergy)
     // 3.3× the drop energy before such points were left out of the bounce.
     sm::WorldDef wd = soft_def(0.001, sm::ContactPath::Sampling);
     sm::World w(wd);
-    add_plane(w);
+    add_plane(w, {0, 1, 0});
     sm::BodyDef def = sm::default_body_def();
     def.shape.radii = {0.1, 0.1, 0.1};
     def.restitution = 0.5;
