@@ -2,14 +2,17 @@
 // Issue #5 pile: N bodies (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an
 // open box, dt = 1/240 s, 720 steps, μ = 0.5. Reported over the last 240 steps: ms per step (the
 // benchmark's manual time, per step, and the process CPU time per step), the deepest penetration, the
-// contacts at the end, and the wall time per stage from the world's profile. free_cores_ms_per_step
+// contacts at the end, the support-map evaluations per touching pair and substep (the candidate pairs'
+// misses included), and the wall time per stage from the world's profile. free_cores_ms_per_step
 // estimates the wall time on idle cores from thread CPU times: the serial CPU time plus, for each
 // parallel loop, its busiest part (this machine is shared, so its wall times with two threads are not).
 //
 // The floor and the four walls are static half-spaces (planes) at the inner faces of the 0.1 m thick
 // walls of the protocol: the same for everything inside the box, and nothing inside can tunnel
-// through a half-space. Arguments: N, threads, substeps per step. These runs keep every body awake
-// (WorldDef::sleep off), so they measure the step itself.
+// through a half-space. rounded_box_stacked places the rounded boxes as a resting pile instead
+// (columns of four, face on face): the narrowphase of a pile at rest. Arguments: N, threads,
+// substeps per step. These runs keep every body awake (WorldDef::sleep off), so they measure the step
+// itself.
 //
 // BM_PileSettled: the pile stepped k_settle_steps (10 s) with sleeping on or off, then timed over
 // k_timed_steps: the cost of a pile at rest, awake against asleep. Arguments: N, sleep speed
@@ -90,7 +93,8 @@ class TimedTasks final : public sm::TaskSystem
     std::vector<double> m_part_s;
 };
 
-enum class Shape { Sphere, Ellipsoid, RoundedBox };
+// RoundedBoxStacked: the rounded boxes placed as a resting pile instead of dropped (stacked_pile).
+enum class Shape { Sphere, Ellipsoid, RoundedBox, RoundedBoxStacked };
 
 sm::ShapeDef pile_shape(Shape shape)
 {
@@ -103,6 +107,7 @@ sm::ShapeDef pile_shape(Shape shape)
         s.radii = {0.06, 0.04, 0.03};
         break;
     case Shape::RoundedBox:
+    case Shape::RoundedBoxStacked:
         s.radii = {0.05, 0.05, 0.05};
         s.epsilon1 = s.epsilon2 = 0.3;
         break;
@@ -131,6 +136,37 @@ void add_wall(sm::World& w, sm::Vec3 normal, double offset)
     (void)sm::create_body(w, d);
 }
 
+constexpr int k_stacked_layers = 4;       // layers of the resting pile [-]
+constexpr double k_stacked_pitch = 0.102; // its grid pitch: 2 mm between neighbouring columns [m]
+
+// A resting pile: the rounded boxes in columns of k_stacked_layers, face on face, 0.1 mm apart, turned
+// by up to ±0.01 rad and shifted by up to ±1 mm, in a box of planes 1 mm outside the outer columns.
+void add_stacked_pile(sm::World& w, int n)
+{
+    const int per_layer = (n + k_stacked_layers - 1) / k_stacked_layers;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
+    const double half = 0.5 * side * k_stacked_pitch;
+    add_wall(w, {0, 1, 0}, 0.0);
+    add_wall(w, {1, 0, 0}, -half);
+    add_wall(w, {-1, 0, 0}, -half);
+    add_wall(w, {0, 0, 1}, -half);
+    add_wall(w, {0, 0, -1}, -half);
+    Lcg rng;
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / per_layer, cell = i % per_layer;
+        sm::BodyDef d = sm::default_body_def();
+        d.shape = pile_shape(Shape::RoundedBoxStacked);
+        d.density = 1000.0;
+        d.friction = 0.5;
+        d.position = {-half + k_stacked_pitch * (cell % side + 0.5) + 1e-3 * rng.next(),
+                      0.0501 + 0.1001 * layer,
+                      -half + k_stacked_pitch * (cell / side + 0.5) + 1e-3 * rng.next()};
+        d.orientation =
+            sm::normalized(sm::Quat{1.0, 0.005 * rng.next(), 0.005 * rng.next(), 0.005 * rng.next()});
+        (void)sm::create_body(w, d);
+    }
+}
+
 sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps,
                     double sleep_speed = 0.0)
 {
@@ -141,6 +177,10 @@ sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks
     def.substep_count = substeps;
     def.task_system = tasks;
     sm::World w(def);
+    if (shape == Shape::RoundedBoxStacked) {
+        add_stacked_pile(w, n);
+        return w;
+    }
     const int per_layer = (n + k_layers - 1) / k_layers;
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_layer))));
     const double half = 0.5 * side * k_pitch; // inner half-width of the box [m]
@@ -175,12 +215,14 @@ void BM_Pile(benchmark::State& st, Shape shape)
     const int substeps = static_cast<int>(st.range(2));
     double max_pen = 0.0, ms = 0.0, cpu_ms = 0.0, free_cores_ms = 0.0;
     size_t contacts = 0, pairs = 0;
+    uint64_t support_calls = 0, touching_pairs = 0, touching_calls = 0;
     std::array<double, static_cast<size_t>(sm::Stage::Count)> stage_ms{};
     for (auto _ : st) {
         auto tasks = std::make_shared<TimedTasks>(threads);
         sm::World w = make_pile(shape, n, tasks, substeps);
         max_pen = 0.0;
         stage_ms.fill(0.0);
+        support_calls = touching_pairs = touching_calls = 0;
         for (int i = 0; i < k_steps - k_timed_steps; ++i)
             w.step();
         const auto start = std::chrono::steady_clock::now();
@@ -191,6 +233,9 @@ void BM_Pile(benchmark::State& st, Shape shape)
             max_pen = std::max(max_pen, sm::world_max_penetration(w));
             for (size_t s = 0; s < stage_ms.size(); ++s)
                 stage_ms[s] += w.profile().stage_ms[s];
+            support_calls += w.profile().support_calls;
+            touching_pairs += w.profile().touching_pairs;
+            touching_calls += w.profile().touching_support_calls;
         }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -211,6 +256,11 @@ void BM_Pile(benchmark::State& st, Shape shape)
     st.counters["max_penetration_mm"] = 1e3 * max_pen;
     st.counters["contacts"] = static_cast<double>(contacts);
     st.counters["pairs"] = static_cast<double>(pairs); // broadphase candidates
+    // Support-map evaluations (one body each) per touching pair and substep, misses included.
+    // The second counts only the touching pairs' own queries.
+    const double touching = touching_pairs > 0 ? static_cast<double>(touching_pairs) : 1.0;
+    st.counters["supports_per_touching_pair"] = static_cast<double>(support_calls) / touching;
+    st.counters["touching_pairs_own_supports"] = static_cast<double>(touching_calls) / touching;
     for (size_t s = 0; s < stage_ms.size(); ++s) {
         const double per_step = stage_ms[s] / k_timed_steps;
         if (per_step > 0.0)
@@ -331,3 +381,4 @@ BENCHMARK_CAPTURE(BM_Pile, sphere, Shape::Sphere)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid_substeps, Shape::Ellipsoid)->Apply(substep_args);
+BENCHMARK_CAPTURE(BM_Pile, rounded_box_stacked, Shape::RoundedBoxStacked)->Apply(pile_args);

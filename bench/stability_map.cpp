@@ -50,7 +50,8 @@ bool wanted(const std::vector<std::string>& slices, const std::string& name)
 
 int main(int argc, char** argv)
 {
-    if (argc == 10 && std::string(argv[1]) == "--trace") { // SM_EXACT=1 picks the exact modal integrator
+    if (argc == 10 &&
+        std::string(argv[1]) == "--trace") { // SM_EXACT=1: exact modal integrator; SM_SOFT=1: soft solver
         const auto num = [&](int i) { return std::strtod(argv[i], nullptr); };
         const st::CellDef d{.scene = static_cast<st::Scene>(std::atoi(argv[2])),
                             .epsilon = num(3),
@@ -61,6 +62,8 @@ int main(int argc, char** argv)
                             .speed = num(8),
                             .seconds = num(9),
                             .exact_modal = std::getenv("SM_EXACT") != nullptr,
+                            .solver = std::getenv("SM_SOFT") != nullptr ? supermodal::ContactSolver::Soft
+                                                                        : supermodal::ContactSolver::Penalty,
                             .trace = stderr};
         std::printf("%s\n%s\n", st::csv_header().c_str(), st::csv_row("trace", d, st::run_cell(d)).c_str());
         return 0;

@@ -75,6 +75,7 @@ sm::World make_pile(int threads, std::shared_ptr<sm::TaskSystem> tasks = {})
 struct PileRun {
     uint64_t hash = 0;
     size_t contacts = 0;
+    uint64_t support_calls = 0; ///< StepProfile::support_calls summed over the run.
     std::vector<sm::ContactEvent> events;
 };
 
@@ -84,6 +85,7 @@ PileRun run_pile(int threads, int steps, std::shared_ptr<sm::TaskSystem> tasks =
     PileRun out;
     for (int s = 0; s < steps; ++s) {
         w.step();
+        out.support_calls += w.profile().support_calls;
         for (const sm::ContactEvent& e : sm::world_contact_events(w))
             out.events.push_back(e);
     }
@@ -170,6 +172,7 @@ TEST(ContactThreads, PileHashIsTheSameForAnyThreadCountAndRun)
         const PileRun many = run_pile(threads, k_steps);
         EXPECT_EQ(many.hash, one.hash) << threads << " threads";
         EXPECT_EQ(many.contacts, one.contacts) << threads << " threads";
+        EXPECT_EQ(many.support_calls, one.support_calls) << threads << " threads";
         EXPECT_TRUE(same_events(many.events, one.events)) << threads << " threads";
     }
 }
@@ -194,6 +197,7 @@ TEST(ContactThreads, AnyHostSchedulerGivesTheSameHashAsOneThread)
     const PileRun reversed = run_pile(1, k_steps, reverse);
     EXPECT_GT(reverse->runs, k_steps); // the world really handed its loops to the host's scheduler
     EXPECT_EQ(reversed.hash, one.hash);
+    EXPECT_EQ(reversed.support_calls, one.support_calls);
     EXPECT_TRUE(same_events(reversed.events, one.events));
     const PileRun per_part = run_pile(1, k_steps, std::make_shared<ThreadPerPartTasks>());
     EXPECT_EQ(per_part.hash, one.hash);

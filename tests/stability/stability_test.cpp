@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The coarse stability map (issue #9, item 2; docs/stability.md): the corners and a few interior points
+// The coarse stability map (docs/stability.md): the corners and a few interior points
 // of each slice of bench/stability_map's grid. Every cell is a configuration validate() accepts.
 // Asserted everywhere: no NaN/Inf. Asserted wherever the engine claims stability: energy gain ≤ 1% of
 // the energy the scene can dissipate (tests/stability/stability_cells.h: E_ref, gain_all, gain_free).

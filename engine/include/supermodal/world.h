@@ -89,6 +89,11 @@ struct StepProfile {
     double total_ms = 0.0;     ///< Wall time of the last step [ms].
     size_t pair_count = 0;     ///< Candidate pairs of the last step's broadphase [-].
     size_t sleeping_count = 0; ///< Dynamic bodies asleep after the last step [-].
+    /// Support-map evaluations of the support-map narrowphase over the last step's substeps, one body
+    /// each (MPR's Minkowski support is two) [-]. Deterministic: the same for any thread count.
+    uint64_t support_calls = 0;
+    uint64_t touching_pairs = 0; ///< Pairs with contact points, summed over the last step's substeps [-].
+    uint64_t touching_support_calls = 0; ///< The part of support_calls made by those pairs' queries [-].
 };
 
 /// Counts of run-time numerical trouble since the world was made; the step never fails.

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "contact/manifold.h"
 
+#include "contact/face_contact.h"
 #include "contact/mpr.h"
+#include "contact/penetration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +18,11 @@ namespace
 constexpr double k_merge_rel = 0.1;
 // Old points lifted off by more than this (fraction of the smallest radius) are dropped.
 constexpr double k_separate_rel = 0.02;
+// A speculative caller's face patches reach where the surfaces have dropped by half this (fraction of the
+// smaller smallest radius), and their corners within it are points [-]: a face resting on the tiny
+// overlap of a stiff soft contact still stands on its corners (one point at its pole let a resting
+// ε = 0.5 body rock and gain energy at a 0.2 ms step, measured).
+constexpr double k_face_gap_rel = 2e-3;
 // Tilts of the support direction towards a face diagonal, largest first: on an ε = 0.3 face they reach
 // 1.0, 0.67, 0.44, 0.30 of the way to the edge (x/a = t^(ε/(2−ε))), so the outermost point still inside
 // the other body marks the edge of the patch; on a sharp box (ε ≤ 0.1) every tilt gives the corner.
@@ -67,7 +74,8 @@ Vec3 to_body(const BodyView& body, const Vec3& world)
 
 // Calls accept(support point) along `dir` tilted towards each of the four diagonals of the body's face
 // that faces `dir`, largest tilt first, until accept says the point is in contact.
-template <class Accept> void tilted_supports(const BodyView& body, const Vec3& dir, Accept&& accept)
+template <class Accept>
+void tilted_supports(const BodyView& body, const Vec3& dir, int& calls, Accept&& accept)
 {
     const Vec3 axes[3] = {rotate(body.orientation, {1, 0, 0}), rotate(body.orientation, {0, 1, 0}),
                           rotate(body.orientation, {0, 0, 1})};
@@ -79,10 +87,28 @@ template <class Accept> void tilted_supports(const BodyView& body, const Vec3& d
     const Vec3 u = normalized(e - dot(e, dir) * dir), v = cross(dir, u);
     for (int s = 0; s < 4; ++s) {
         const Vec3 diagonal = ((s & 1) != 0 ? u : -u) + ((s & 2) != 0 ? v : -v);
-        for (double t : k_tilts)
+        for (double t : k_tilts) {
+            ++calls;
             if (accept(body_support(body, dir + t * diagonal)))
                 break;
+        }
     }
+}
+
+// MPR's answer as a Penetration, with the deepest points along its normal.
+Penetration mpr_only(const BodyView& a, const BodyView& b)
+{
+    const MprResult mpr = mpr_penetration(a, b);
+    Penetration r{.hit = mpr.hit, .support_calls = 2 * mpr.support_calls};
+    if (!mpr.hit)
+        return r;
+    r.depth = mpr.depth;
+    r.normal = mpr.normal;
+    r.on_a = body_support(a, -1.0 * mpr.normal);
+    r.on_b = body_support(b, mpr.normal);
+    r.point = mpr.point;
+    r.support_calls += 2;
+    return r;
 }
 
 // Depth of a world point inside a convex body along its own surface normal (first order), or < 0.
@@ -111,8 +137,8 @@ bool in_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, con
 
 // Keeps the deepest point and the three that span the largest area with it in the contact plane;
 // then, if a fourth spare point makes a quadrilateral with those three that contains the deepest (a
-// flat face's centre inside its corners), the spare replaces it: the patch's outline holds the body
-// better than its middle.
+// flat face's centre inside its corners) and touches, the spare replaces it: the patch's outline holds
+// the body better than its middle.
 void reduce(std::vector<Candidate>& pts, const Vec3& n)
 {
     if (pts.size() <= PairManifold::k_capacity)
@@ -153,11 +179,39 @@ void reduce(std::vector<Candidate>& pts, const Vec3& n)
     if (!pts.empty()) {
         const Candidate spare = pts[pick(quad_score(p1, p2, p3))];
         const Vec3 q = plane(spare.pa);
-        if (in_triangle(p0, p1, p2, p3, n) || in_triangle(p0, p1, p2, q, n) ||
-            in_triangle(p0, p2, p3, q, n) || in_triangle(p0, p1, p3, q, n))
+        // Only a touching spare: a speculative corner in place of the deepest would leave nothing
+        // touching, and the body would sink until its corners close their gap.
+        if (spare.depth > 0.0 && (in_triangle(p0, p1, p2, p3, n) || in_triangle(p0, p1, p2, q, n) ||
+                                  in_triangle(p0, p2, p3, q, n) || in_triangle(p0, p1, p3, q, n)))
             kept[0] = spare;
     }
     pts.swap(kept);
+}
+
+// Orders the kept points so that a contact the manifold held before keeps its place among them (points
+// matched by their material point on A within `merge`, in the old order; new points after), so a
+// solver can carry per-point data from one substep to the next.
+void keep_slots(const BodyView& a, const PairManifold& old, std::vector<Candidate>& pts, double merge)
+{
+    std::array<int, 16> rank{};
+    for (size_t i = 0; i < pts.size() && i < rank.size(); ++i) {
+        const Vec3 local = to_body(a, pts[i].pa);
+        rank[i] = PairManifold::k_capacity + static_cast<int>(i);
+        for (int s = 0; s < old.count; ++s)
+            if (length(local - old.points[static_cast<size_t>(s)].local_a) < merge) {
+                rank[i] = s;
+                break;
+            }
+    }
+    std::vector<size_t> order(pts.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return rank[x] < rank[y]; });
+    std::vector<Candidate> sorted;
+    sorted.reserve(pts.size());
+    for (size_t i : order)
+        sorted.push_back(pts[i]);
+    pts.swap(sorted);
 }
 
 // Merges fresh candidates with the surviving old points, reduces to capacity, stores, and appends the
@@ -185,49 +239,168 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
     return speculative ? static_cast<int>(fresh.size()) : touching;
 }
 
-} // namespace
-
-int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
-                     bool speculative)
+// The manifold's points that still touch (or nearly): material points of both bodies, re-measured along
+// today's normal, dropped once lifted off or slid apart. None when `keep` is false (smooth pairs).
+std::vector<Candidate> carried_points(const BodyView& a, const BodyView& b, const PairManifold& io,
+                                      const Vec3& n, double r, bool keep)
 {
-    const MprResult mpr = mpr_penetration(a, b);
-    if (!mpr.hit) {
-        io.count = 0;
-        return 0;
-    }
-    const Vec3 n = mpr.normal;
-    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
-    const double merge = k_merge_rel * r;
-
-    // Old points: material points of both bodies, re-measured along today's normal.
     std::vector<Candidate> old;
-    const int carried = keeps_old_points(*a.collider, b.collider) ? io.count : 0;
-    for (int i = 0; i < carried; ++i) {
+    const double merge = k_merge_rel * r;
+    for (int i = 0; keep && i < io.count; ++i) {
         const Vec3 pa = to_world(a, io.points[i].local_a), pb = to_world(b, io.points[i].local_b);
         const double depth = dot(pb - pa, n);
         const Vec3 slide = (pb - pa) - depth * n;
         if (depth > -k_separate_rel * r && length(slide) < merge)
             old.push_back({pa, pb, depth});
     }
+    return old;
+}
 
-    // Fresh points: the deepest point of each body along the normal, if it lies inside the other (an
-    // overhanging face's centre may not), then the tilted supports of flat faces.
+// A face query's points (with `speculative`, also the carried points `old` that no longer touch) as the
+// manifold: reduced to capacity, in their old slots, stored, appended.
+int finish_faces(const BodyView& a, const BodyView* b, const FaceContact& fc, std::vector<Candidate>& old,
+                 double merge, bool flip, bool speculative, PairManifold& io, std::vector<ContactPoint>& out)
+{
+    std::vector<Candidate> fresh, none;
+    for (int i = 0; i < fc.count; ++i) {
+        const FacePoint& p = fc.points[static_cast<size_t>(i)];
+        add_unique(fresh, {p.on_a, p.on_b, p.depth}, merge);
+    }
+    for (const Candidate& c : old)
+        if (speculative && !(c.depth > 0.0))
+            add_unique(fresh, c, merge);
+    if (fresh.empty()) {
+        io.count = 0;
+        return 0;
+    }
+    reduce(fresh, fc.normal);
+    keep_slots(a, io, fresh, merge);
+    return finish(a, b, fresh, none, fc.normal, merge, flip, speculative, io, out);
+}
+
+// A body's extent along a world direction, h(d) = max d·x [m]: from its pole when d is one of its face
+// axes (no evaluation: a face found apart is stored as exactly its axis), else its support point.
+double extent_along(const BodyView& body, const Vec3& d, int& calls)
+{
+    const Collider& c = *body.collider;
+    const Vec3 local = inv_rotate(body.orientation, d);
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 rest = local - local[k] * Vec3{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+        if (length(rest) < 1e-12) {
+            Vec3 pole;
+            pole[k] = (local[k] < 0.0 ? -1.0 : 1.0) * c.shape.radii[k];
+            return dot(d, to_world(body, pole - c.com_shape));
+        }
+    }
+    ++calls;
+    return dot(d, body_support(body, d));
+}
+
+// Overlap of the two bodies along n (from B towards A): h_B(n) + h_A(−n) [m]; ≤ 0 proves them apart.
+double overlap_along(const BodyView& a, const BodyView& b, const Vec3& n, int& calls)
+{
+    return extent_along(b, n, calls) + extent_along(a, -1.0 * n, calls);
+}
+
+// Two bodies with face patches (face_contact.h). A pair found apart at the last substep first tries the
+// direction that separated it (two evaluations). Returns the points appended, or −1 when the general
+// path must decide.
+int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculative, PairManifold& io,
+                  std::vector<ContactPoint>& out, int& calls)
+{
+    const Vec3 stored = rotate(a.orientation, io.normal);
+    const bool has_normal = length(io.normal) > 0.0;
+    if (io.count == 0 && has_normal && !(overlap_along(a, b, stored, calls) > 0.0))
+        return 0; // still apart along it
+    const Vec3 guess = has_normal ? stored : body_shape_centre(a) - body_shape_centre(b);
+    const FaceContact fc = face_contact(a, b, normalized(guess), speculative ? k_face_gap_rel * r : 0.0);
+    calls += fc.support_calls;
+    // A speculative solver keeps the corners that lifted by less than the kept gap as rows: a resting
+    // face whose corners flicker between touching and not keeps its support on all of them.
+    std::vector<Candidate> old;
+    if (speculative && fc.kind != FaceContact::Kind::NotFaces)
+        old = carried_points(a, b, io, fc.normal, r, true);
+    switch (fc.kind) {
+    case FaceContact::Kind::Apart:
+    case FaceContact::Kind::Faces: {
+        const int n = finish_faces(a, &b, fc, old, k_merge_rel * r, false, speculative, io, out);
+        io.normal = inv_rotate(a.orientation, fc.normal);
+        return n;
+    }
+    case FaceContact::Kind::Edge: {
+        // Edges crossing touch in one point; points carried from earlier substeps hold edges that lie
+        // along each other.
+        std::vector<Candidate> old = carried_points(a, b, io, fc.normal, r, true);
+        std::vector<Candidate> fresh{{fc.points[0].on_a, fc.points[0].on_b, fc.points[0].depth}};
+        io.normal = inv_rotate(a.orientation, fc.normal);
+        return finish(a, &b, fresh, old, fc.normal, k_merge_rel * r, false, speculative, io, out);
+    }
+    case FaceContact::Kind::NotFaces:
+        break;
+    }
+    return -1;
+}
+
+} // namespace
+
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
+                     bool speculative, QueryCost* io_cost)
+{
+    QueryCost unused;
+    int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
+    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
+    if (has_face_patches(*a.collider) && has_face_patches(*b.collider)) {
+        const int done = collide_faces(a, b, r, speculative, io, out, calls);
+        if (done >= 0)
+            return done;
+    }
+    // A pair with a flat-faced body searches from its last normal (penetration.h; MPR where that fails).
+    // Smooth pairs keep MPR's own answer: libccd's normal is off the exact one by up to 0.4 rad at 1 mm
+    // overlaps of the pile's ellipsoids, and the exact one changes how their pile settles
+    // (docs/contact.md), so they change over on their own.
+    const bool flat = keeps_old_points(*a.collider, b.collider);
+    // Bodies with face patches get here on rounded edges and corners, where the least overlap is the
+    // contact's own normal and MPR's centre ray often leaves through another face of B − A.
+    const bool faces = has_face_patches(*a.collider) && has_face_patches(*b.collider);
+    const Vec3 warm = (io.count > 0 || faces) && flat ? rotate(a.orientation, io.normal) : Vec3{};
+    const PenetrationTarget target = faces ? PenetrationTarget::LeastOverlap : PenetrationTarget::RayExit;
+    const Penetration pen = flat ? find_penetration(a, b, warm, target) : mpr_only(a, b);
+    calls += pen.support_calls;
+    if (!pen.hit) {
+        io.count = 0;
+        // A direction the search found apart is where a flat pair's next query starts.
+        io.normal = flat && length(pen.normal) > 0.0 ? inv_rotate(a.orientation, pen.normal) : Vec3{};
+        return 0;
+    }
+    const Vec3 n = pen.normal;
+    const double merge = k_merge_rel * r;
+
+    // Old points: material points of both bodies, re-measured along today's normal.
+    std::vector<Candidate> old = carried_points(a, b, io, n, r, flat);
+
+    // Fresh points: the deepest point of each body along the normal (the search's last supports), if
+    // it lies inside the other (an overhanging face's centre may not), then the tilted supports of flat
+    // faces. At the minimum of the overlap the two are one contact, sb = sa + depth·n.
     std::vector<Candidate> fresh;
-    const Vec3 sa = body_support(a, -n), sb = body_support(b, n);
+    const Vec3 sa = pen.on_a, sb = pen.on_b;
+    const double depth = pen.depth;
     if (depth_inside(b, sa) > 0.0)
-        add_unique(fresh, {sa, sa + mpr.depth * n, mpr.depth}, merge);
+        add_unique(fresh, {sa, sa + depth * n, depth}, merge);
     if (depth_inside(a, sb) > 0.0)
-        add_unique(fresh, {sb - mpr.depth * n, sb, mpr.depth}, merge);
-    if (fresh.empty()) // edge on edge: MPR's own point, halfway between the surfaces
-        fresh.push_back({mpr.point - 0.5 * mpr.depth * n, mpr.point + 0.5 * mpr.depth * n, mpr.depth});
-    const double min_depth = k_min_depth_ratio * mpr.depth;
+        add_unique(fresh, {sb - depth * n, sb, depth}, merge);
+    if (fresh.empty()) // edge on edge: the search's point, halfway between the surfaces
+        fresh.push_back({pen.point - 0.5 * depth * n, pen.point + 0.5 * depth * n, depth});
+    const double min_depth = k_min_depth_ratio * depth;
     // Tilted candidates every substep, even for a full manifold: keeping only the old material points
     // (refilling when one drops) left points from the first touch near the face centres, and a
     // ten-box stack with them buckled even at 100 Hz (measured). The plane through the other body's
     // support point bounds that body (convex), so a candidate less than min_depth below it cannot be
-    // min_depth deep: its inside test is skipped.
-    if (has_flat_faces(*a.collider))
-        tilted_supports(a, -n, [&](const Vec3& p) {
+    // min_depth deep: its inside test is skipped. Two bodies with face patches get here only touching
+    // on an edge or a corner (face_contact.h took faces and edges across edges), where the tilted
+    // supports add nothing the carried points do not.
+    const bool tilt = !(has_face_patches(*a.collider) && has_face_patches(*b.collider));
+    if (tilt && has_flat_faces(*a.collider))
+        tilted_supports(a, -n, calls, [&](const Vec3& p) {
             if (dot(sb - p, n) < min_depth)
                 return false;
             const double d = depth_inside(b, p);
@@ -235,8 +408,8 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
                 add_unique(fresh, {p, p + d * n, d}, merge);
             return d >= min_depth;
         });
-    if (has_flat_faces(*b.collider))
-        tilted_supports(b, n, [&](const Vec3& p) {
+    if (tilt && has_flat_faces(*b.collider))
+        tilted_supports(b, n, calls, [&](const Vec3& p) {
             if (dot(p - sa, n) < min_depth)
                 return false;
             const double d = depth_inside(a, p);
@@ -244,12 +417,15 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
                 add_unique(fresh, {p - d * n, p, d}, merge);
             return d >= min_depth;
         });
+    io.normal = inv_rotate(a.orientation, n);
     return finish(a, &b, fresh, old, n, merge, false, speculative, io, out);
 }
 
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
-                           std::vector<ContactPoint>& out, bool speculative)
+                           std::vector<ContactPoint>& out, bool speculative, QueryCost* io_cost)
 {
+    QueryCost unused;
+    int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
     // The plane's support along −n is exact: no MPR. Depths are exact for every material point.
     const Vec3 n = normalized(plane.collider->shape.plane_normal);
     const double offset = plane.collider->shape.plane_offset;
@@ -258,7 +434,6 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
     auto candidate = [&](const Vec3& p) {
         return Candidate{p, p + (offset - dot(n, p)) * n, offset - dot(n, p)};
     };
-
     std::vector<Candidate> old;
     const int carried = keeps_old_points(*body.collider, nullptr) ? io.count : 0;
     for (int i = 0; i < carried; ++i) {
@@ -266,16 +441,23 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
         if (c.depth > -k_separate_rel * r)
             old.push_back(c);
     }
+    if (has_face_patches(*body.collider)) {
+        const FaceContact fc = face_contact_plane(body, n, offset, speculative ? k_face_gap_rel * r : 0.0);
+        calls += fc.support_calls;
+        if (fc.kind == FaceContact::Kind::Apart || fc.kind == FaceContact::Kind::Faces)
+            return finish_faces(body, nullptr, fc, old, merge, !body_is_a, speculative, io, out);
+    }
     // The support point is the body's deepest: when it is out (by more than the kept gap, speculative),
     // every point is.
     const Candidate deepest = candidate(body_support(body, -n));
+    ++calls;
     if (!(deepest.depth > (speculative ? -k_separate_rel * r : 0.0))) {
         io.count = 0;
         return 0;
     }
     std::vector<Candidate> fresh{deepest};
     if (has_flat_faces(*body.collider))
-        tilted_supports(body, -n, [&](const Vec3& p) {
+        tilted_supports(body, -n, calls, [&](const Vec3& p) {
             const Candidate c = candidate(p);
             const bool deep = c.depth >= k_min_depth_ratio * deepest.depth;
             if (deep)

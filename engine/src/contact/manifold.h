@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Support-map narrowphase with a persistent contact manifold (up to 4 points per pair).
 //
-// MPR (mpr.h) gives one normal and depth per pair; a flat face needs more than one point to rest flat.
+// The penetration search (penetration.h: Newton from the pair's last normal, MPR when that fails)
+// gives one normal and depth per pair; a flat face needs more than one point to rest flat.
 // Each substep the manifold (a) keeps its old points, stored as material points of both bodies in
 // their body frames so they follow the motion, re-measuring their depth along today's normal and
 // dropping those that separated or slid apart; (b) adds the deepest point of A along the normal and,
@@ -32,20 +33,24 @@ struct PairManifold {
     uint64_t key = 0; ///< BodyPair::key().
     int count = 0;
     std::array<ManifoldPoint, k_capacity> points{};
+    /// The pair's normal (from B towards A) in A's body frame, where the next substep's search starts
+    /// (contact/penetration.h). Unit for a body pair, zero for a plane pair.
+    Vec3 normal{};
 };
 
 /// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
 /// points (normal from B towards A, weights summing to 1). With `speculative`, also its kept points that
 /// do not touch (gap < 2% of the smaller smallest radius), with weight 0 and depth −gap: a solver that
-/// stops an approach before it closes keeps a resting face on all its corners. Returns the number
-/// appended.
+/// stops an approach before it closes keeps a resting face on all its corners. The support-map
+/// evaluations it made are added to io_cost when given. Returns the number appended.
 int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io_manifold,
-                     std::vector<ContactPoint>& out_points, bool speculative = false);
+                     std::vector<ContactPoint>& out_points, bool speculative = false,
+                     QueryCost* io_cost = nullptr);
 
 /// Same for a convex body against a plane: the manifold's A is always the body; normals are flipped
 /// for the output when body_is_a is false (as collide_plane).
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
                            PairManifold& io_manifold, std::vector<ContactPoint>& out_points,
-                           bool speculative = false);
+                           bool speculative = false, QueryCost* io_cost = nullptr);
 
 } // namespace supermodal

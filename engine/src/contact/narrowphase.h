@@ -32,6 +32,11 @@ struct ContactPoint {
     double area = 0.0;   ///< The point's own surface area before the shares [m²] (a manifold point: 1).
 };
 
+/// Work of one pair's support-map query, for the step profile (StepProfile::support_calls).
+struct QueryCost {
+    int support_calls = 0; ///< Support-map evaluations, one body each [-] (a Minkowski support is two).
+};
+
 /// Appends the points of A against B by surface sampling (both directions, weights summing to 1).
 /// Returns the number appended.
 int collide_sampled(const BodyView& a, const BodyView& b, std::vector<ContactPoint>& out_points);

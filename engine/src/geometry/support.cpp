@@ -10,7 +10,7 @@
 // sign(D). For ε > 2 (concave, ℓp with p < 1) the convex hull of the unit ball is the ℓ1 ball, so the
 // hull's support is the same formula with ε clamped to 2 and a vertex chosen on ties: both ε ≥ 2 give
 // the octahedron with vertices at the axis tips.
-#include "supermodal/geometry.h"
+#include "geometry/support_internal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,10 +23,36 @@ namespace
 struct DualResult {
     double norm = 0.0;        // ‖(c0, c1)‖_q [-]
     double v[2] = {0.0, 0.0}; // maximiser of (c0, c1)·v over the unit ℓp ball (the convex hull's for ε > 2)
+    // Hessian of ‖(c0, c1)‖_q: ∂v_i/∂c_j, symmetric (h01 = h10); filled only when asked for.
+    double h00 = 0.0, h01 = 0.0, h11 = 0.0;
 };
 
-// One level of the nested norm: exponent eps of the primal, q = 2/(2 − eps) of the dual.
-DualResult dual_level(double c0, double c1, double eps)
+// Where a face is flat (ε < 1) the dual norm's curvature grows without bound towards the face's
+// normal; capped at this many times 1/m, a radius of curvature 1e12 times the body's [-].
+constexpr double k_hessian_cap = 1e12;
+
+// The Hessian of the ℓq norm at (c0, c1) is rank one along the tangent (c1, −c0) (the norm is
+// 1-homogeneous): (q − 1)|c0 c1|^(q−2) ‖c‖^(1−2q) [c1², −c0c1; −c0c1, c0²]. In the ratios of dual_level,
+// with r_k = 1, t = r_o^q and sum = 1 + t (‖c‖^(1−2q) = m^(1−2q)·w/sum):
+//   h_kk = (q−1)/m · t · w/sum,  h_oo = (q−1)/m · r_o^(q−2) · w/sum,  h_ko = −(q−1)/m · s_k s_o r_o^(q−1) ·
+//   w/sum.
+void dual_hessian(DualResult& out, double q, int k, double m, double r_o, double t, double w, double sum,
+                  const double sign[2])
+{
+    const double scale = (q - 1.0) * w / (sum * m);
+    // r_o^(q−2) = t / r_o²; at r_o = 0 it is 0 (q > 2), 1 (q = 2) or unbounded (q < 2, the flat face).
+    double oo = r_o > 0.0 ? t / (r_o * r_o) : (q > 2.0 ? 0.0 : (q == 2.0 ? 1.0 : k_hessian_cap));
+    oo = std::min(oo, k_hessian_cap);
+    const double h_kk = scale * t, h_oo = scale * oo;
+    const double h_ko = r_o > 0.0 ? -scale * sign[0] * sign[1] * (t / r_o) : 0.0;
+    out.h00 = k == 0 ? h_kk : h_oo;
+    out.h11 = k == 0 ? h_oo : h_kk;
+    out.h01 = h_ko;
+}
+
+// One level of the nested norm: exponent eps of the primal, q = 2/(2 − eps) of the dual. With
+// `hessian`, also the norm's Hessian (zero for eps ≥ 2, where the norm is piecewise linear).
+DualResult dual_level(double c0, double c1, double eps, bool hessian = false)
 {
     DualResult out;
     const double m = std::max(std::abs(c0), std::abs(c1));
@@ -54,13 +80,19 @@ DualResult dual_level(double c0, double c1, double eps)
         out.norm = m * root;
         out.v[0] = sign[0] * r[0] / root;
         out.v[1] = sign[1] * r[1] / root;
+        if (hessian) { // [c1², −c0c1; −c0c1, c0²] / ‖c‖³
+            const double inv = 1.0 / (m * root * root * root);
+            out.h00 = r[1] * r[1] * inv;
+            out.h11 = r[0] * r[0] * inv;
+            out.h01 = -sign[0] * sign[1] * r[0] * r[1] * inv;
+        }
         return out;
     }
-    // Three powers instead of five (the support map of flat-faced bodies spent half the rounded-box
+    // Two powers instead of five (the support map of flat-faced bodies spent half the rounded-box
     // pile's time in pow): the largest ratio r_k is exactly 1, so with t = r_o^q (o the other),
     // sum = 1 + t ∈ [1, 2] and w = sum^(−ε/2):
-    //   ‖c‖_q = m·sum^(1/q) = m·sum·w                (1/q = 1 − ε/2),
-    //   v_i = (r_i^q / sum)^((q−1)/q) = r_i^(q·ε/2)·w  ((q−1)/q = ε/2).
+    //   ‖c‖_q = m·sum^(1/q) = m·sum·w                        (1/q = 1 − ε/2),
+    //   v_i = (r_i^q / sum)^((q−1)/q) = r_i^(q·ε/2)·w = (t/r_o)·w  ((q−1)/q = ε/2, q·ε/2 = q − 1).
     const double q = 2.0 / (2.0 - eps);
     const int k = r[0] >= r[1] ? 0 : 1, o = 1 - k;
     const double t = std::pow(r[o], q);
@@ -68,8 +100,26 @@ DualResult dual_level(double c0, double c1, double eps)
     const double w = std::pow(sum, -0.5 * eps);
     out.norm = m * sum * w;
     out.v[k] = sign[k] * w;
-    out.v[o] = sign[o] * std::pow(r[o], 0.5 * q * eps) * w;
+    // r_o^(qε/2) = r_o^(q−1) = t / r_o: no power of its own.
+    out.v[o] = r[o] > 0.0 ? sign[o] * (t / r[o]) * w : 0.0;
+    if (hessian)
+        dual_hessian(out, q, k, m, r[o], t, w, sum, sign);
     return out;
+}
+
+// The direction scaled to c = a ∘ d / max|a ∘ d| (largest component exactly 1, so no level overflows),
+// and that scale, max|a ∘ d| [m]. False for a zero or non-finite direction.
+bool scaled_direction(const Vec3& a, const Vec3& direction, Vec3& out_c, double& out_scale)
+{
+    const double m = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+    if (!(m > 0.0) || !std::isfinite(m))
+        return false;
+    // Two rescalings: the first so that a ∘ d cannot overflow, the second so the largest is exactly 1.
+    const Vec3 c = hadamard(a, direction / m);
+    const double big = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+    out_c = c / big;
+    out_scale = m * big;
+    return true;
 }
 
 } // namespace
@@ -89,13 +139,10 @@ Vec3 support_point(const ShapeDef& shape, const Vec3& direction)
             return {std::clamp(p.x, -a.x, a.x), std::clamp(p.y, -a.y, a.y), std::clamp(p.z, -a.z, a.z)};
         }
     }
-    const Vec3 pole{0.0, 0.0, a.z};
-    const double m = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
-    if (!(m > 0.0) || !std::isfinite(m))
-        return pole;
-    // Two rescalings: the first so that a ∘ d cannot overflow, the second so the largest is exactly 1.
-    Vec3 c = hadamard(a, direction / m);
-    c = c / std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+    Vec3 c;
+    double scale = 0.0;
+    if (!scaled_direction(a, direction, c, scale))
+        return {0.0, 0.0, a.z}; // the pole
     if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
         // The ellipsoid whose ‖a ∘ d‖² left the fast path's range above: the same a ∘ c / ‖c‖ on the
         // rescaled c, where ‖c‖ ∈ [1, √3] (the largest component is exactly 1).
@@ -106,6 +153,49 @@ Vec3 support_point(const ShapeDef& shape, const Vec3& direction)
     const DualResult outer = dual_level(inner.norm, c.z, shape.epsilon1);
     const double rho = outer.v[0];
     return {a.x * rho * inner.v[0], a.y * rho * inner.v[1], a.z * outer.v[1]};
+}
+
+} // namespace supermodal
+
+namespace supermodal
+{
+
+// x = a ∘ ∇N(a ∘ d) with N the nested dual norm ‖(‖(D_x, D_y)‖_q2, D_z)‖_q1, so ∂x/∂d = diag(a) ∇²N diag(a),
+// and ∇²N(a ∘ d) = ∇²N(c) / scale (N is 1-homogeneous). With M the inner norm and (v_M, v_z) the outer
+// gradient: ∇²N = [H_MM ∇M∇Mᵀ + v_M ∇²M, H_Mz ∇M; H_Mz ∇Mᵀ, H_zz].
+SupportJet support_jet(const ShapeDef& shape, const Vec3& direction)
+{
+    SupportJet jet;
+    const Vec3& a = shape.radii;
+    Vec3 c;
+    double scale = 0.0;
+    if (!scaled_direction(a, direction, c, scale)) {
+        jet.point = {0.0, 0.0, a.z};
+        return jet;
+    }
+    if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
+        // The ellipsoid: x = E d / |a ∘ d| with E = diag(a²), so ∂x/∂d = (E − x xᵀ) / |a ∘ d|; the point
+        // from support_point's own closed form.
+        jet.point = support_point(shape, direction);
+        const double h = scale * length(c);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                jet.jacobian.m[i][j] = ((i == j ? a[i] * a[i] : 0.0) - jet.point[i] * jet.point[j]) / h;
+        return jet;
+    }
+    const DualResult inner = dual_level(c.x, c.y, shape.epsilon2, true);
+    const DualResult outer = dual_level(inner.norm, c.z, shape.epsilon1, true);
+    const double rho = outer.v[0];
+    jet.point = {a.x * rho * inner.v[0], a.y * rho * inner.v[1], a.z * outer.v[1]};
+    const double gx = inner.v[0], gy = inner.v[1];
+    const double n[3][3] = {
+        {outer.h00 * gx * gx + rho * inner.h00, outer.h00 * gx * gy + rho * inner.h01, outer.h01 * gx},
+        {outer.h00 * gx * gy + rho * inner.h01, outer.h00 * gy * gy + rho * inner.h11, outer.h01 * gy},
+        {outer.h01 * gx, outer.h01 * gy, outer.h11}};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            jet.jacobian.m[i][j] = a[i] * n[i][j] * a[j] / scale;
+    return jet;
 }
 
 } // namespace supermodal

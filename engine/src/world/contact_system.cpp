@@ -52,8 +52,9 @@ bool box_above_plane(const Aabb& box, const ShapeDef& plane)
 // Support-map pairs (MPR + persistent manifold) carry their old manifold over by key into out_manifold.
 void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPair& pair,
                   const ContactDef& def, const std::vector<PairManifold>& old_manifolds,
-                  PairManifold& out_manifold, std::vector<ContactPoint>& out_points)
+                  PairManifold& out_manifold, std::vector<ContactPoint>& out_points, QueryCost& out_cost)
 {
+    out_cost = QueryCost{};
     out_manifold = PairManifold{.key = pair.key()};
     const BodyModel& ma = reg.get<BodyModel>(pair.a);
     const BodyModel& mb = reg.get<BodyModel>(pair.b);
@@ -72,11 +73,11 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
         if (it != old_manifolds.end() && it->key == pair.key())
             out_manifold = *it;
         if (plane_b)
-            collide_manifold_plane(a, b, true, out_manifold, out_points, speculative);
+            collide_manifold_plane(a, b, true, out_manifold, out_points, speculative, &out_cost);
         else if (plane_a)
-            collide_manifold_plane(b, a, false, out_manifold, out_points, speculative);
+            collide_manifold_plane(b, a, false, out_manifold, out_points, speculative, &out_cost);
         else if (overlaps(a.box, b.box))
-            collide_manifold(a, b, out_manifold, out_points, speculative);
+            collide_manifold(a, b, out_manifold, out_points, speculative, &out_cost);
         else
             out_manifold.count = 0;
         return;
@@ -204,6 +205,9 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     drop_pairs_apart(reg, io);
     settle_sleeping_pairs(reg, io);
     begin_step_events(io.events, io.pairs.size());
+    io.support_calls = 0;
+    io.touching_pairs = 0;
+    io.touching_support_calls = 0;
     return substeps_needed(def, reg, io);
 }
 
@@ -214,6 +218,7 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
     old_manifolds.swap(io.manifolds);
     io.manifolds.clear();
     io.pair_manifold.resize(io.pairs.size());
+    io.pair_cost.resize(io.pairs.size());
     io.part_points.resize(par.part_capacity());
     for (std::vector<ContactPoint>& points : io.part_points)
         points.clear();
@@ -233,14 +238,23 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
         for (size_t pi = begin; pi < end; ++pi) {
             const auto first = static_cast<uint32_t>(points.size());
             collide_pair(reg, io.boxes, io.pairs[pi], def.contact, old_manifolds, io.pair_manifold[pi],
-                         points);
+                         points, io.pair_cost[pi]);
             io.pair_points[pi] = {static_cast<uint32_t>(part), first, static_cast<uint32_t>(points.size())};
         }
     });
-    // Pairs are sorted by key, so compacting in pair order keeps the manifolds sorted too.
-    for (const PairManifold& m : io.pair_manifold)
-        if (m.count > 0)
+    // Pairs are sorted by key, so compacting in pair order keeps the manifolds sorted too. The counts
+    // are summed here, in pair order, not by the threads.
+    for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
+        // Kept while touching, or apart with a direction that separated it (the next query's start).
+        const PairManifold& m = io.pair_manifold[pi];
+        if (m.count > 0 || length(m.normal) > 0.0)
             io.manifolds.push_back(m);
+        const auto calls = static_cast<uint64_t>(io.pair_cost[pi].support_calls);
+        const bool touching = io.pair_points[pi].end > io.pair_points[pi].begin;
+        io.support_calls += calls;
+        io.touching_pairs += touching ? 1 : 0;
+        io.touching_support_calls += touching ? calls : 0;
+    }
 }
 
 namespace

@@ -48,6 +48,10 @@ struct ContactWorld {
     std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
     std::vector<PairManifold> old_manifolds; ///< Scratch: last substep's, read while making new ones.
     std::vector<PairAnchor> next_anchors;    ///< Scratch: this substep's anchors while they are made.
+    std::vector<QueryCost> pair_cost;        ///< Scratch: per pair, its support-map work this substep.
+    uint64_t support_calls = 0;              ///< Derived: support-map evaluations over this step [-].
+    uint64_t touching_pairs = 0;             ///< Derived: pairs with points, summed over substeps [-].
+    uint64_t touching_support_calls = 0;     ///< Derived: the part of support_calls those pairs made [-].
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].

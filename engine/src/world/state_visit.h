@@ -24,7 +24,7 @@ enum class Field : uint8_t {
 };
 
 /// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
-inline constexpr uint32_t k_snapshot_layout_version = 4;
+inline constexpr uint32_t k_snapshot_layout_version = 5;
 
 [[nodiscard]] inline uint64_t entity_key(Entity e)
 {
@@ -143,6 +143,7 @@ template <class V, class M> void visit_manifolds(V& v, M& manifolds)
             visit_vec3(v, m.points[static_cast<size_t>(i)].local_a, Field::Hashed);
             visit_vec3(v, m.points[static_cast<size_t>(i)].local_b, Field::Hashed);
         }
+        visit_vec3(v, m.normal, Field::Hashed); // where the next penetration search starts
     }
 }
 

@@ -172,6 +172,9 @@ void World::Impl::step()
         run(Stage::UpdateSurfaces,
             [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     }
+    profile.support_calls = contact.support_calls;
+    profile.touching_pairs = contact.touching_pairs;
+    profile.touching_support_calls = contact.touching_support_calls;
     run(Stage::Events, [&] {
         clear_forces(reg);
         clear_modal_forces(reg);
