@@ -41,6 +41,7 @@ struct Options {
     std::vector<double> rates{60, 240, 1000};   // steps per second, 1/dt [1/s]
     std::string engine = "all";
     std::string csv;
+    double trace = 0.0; // print time, the largest speed and its body every this many seconds (0: off) [s]
     SupermodalOptions supermodal;
 };
 
@@ -114,6 +115,17 @@ Stack grid(int n)
     return s;
 }
 
+// One --trace line to stderr: time, the largest body speed and which body, that body's height.
+void trace_line(PeerWorld& w, int bodies, double t)
+{
+    int fastest = 0;
+    for (int b = 1; b < bodies; ++b)
+        if (w.speed(b) > w.speed(fastest))
+            fastest = b;
+    std::fprintf(stderr, "%.3f s: %.3g m/s, body %d at y %.4f m\n", t, w.speed(fastest), fastest,
+                 w.position(fastest).y);
+}
+
 // Steps the stack for o.seconds; only step() is timed.
 Result run_stack(PeerWorld& w, const Stack& s, const Options& o)
 {
@@ -135,6 +147,8 @@ Result run_stack(PeerWorld& w, const Stack& s, const Options& o)
             r.speed_end = std::max(r.speed_end, w.speed(b));
         if (i >= settle)
             r.speed_after = std::max(r.speed_after, r.speed_end);
+        if (o.trace > 0.0 && i % std::max(1L, std::lround(o.trace / r.dt)) == 0)
+            trace_line(w, r.bodies, static_cast<double>(i) * r.dt);
     }
     for (size_t k = 0; k < s.watched.size(); ++k) {
         const sm::Vec3 d = w.position(s.watched[k]) - start[k];
@@ -230,6 +244,8 @@ int main(int argc, char** argv)
     app.add_option("--engine", o.engine, "all, supermodal or bullet")
         ->check(CLI::IsMember({"all", "supermodal", "bullet"}));
     app.add_option("--csv", o.csv, "Write the table as CSV here");
+    app.add_option("--trace", o.trace, "Print the largest speed every this many seconds [s] (0: off)")
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
     app.add_option("--solver", solver, "supermodal contact solver (penalty or soft)");
     CLI11_PARSE(app, argc, argv);
