@@ -17,10 +17,16 @@ if(NOT DEFINED SAMPLE)
 endif()
 set(host ${WORK_DIR}/host)
 
-# What every install holds: the generated version.h of this version.
+# What every install holds: the generated version.h of this version, and render.h only with an exported
+# supermodal::render (a host including it must be able to link what it declares).
 file(STRINGS ${prefix}/include/supermodal/version.h version_line REGEX "#define SM_VERSION_STRING ")
 if(NOT version_line STREQUAL "#define SM_VERSION_STRING \"${VERSION}\"")
   message(FATAL_ERROR "installed supermodal/version.h: '${version_line}', expected version ${VERSION}")
+endif()
+file(READ ${prefix}/${LIBDIR}/cmake/supermodal/supermodalTargets.cmake targets)
+string(FIND "${targets}" "add_library(supermodal::render " render_exported)
+if(EXISTS ${prefix}/include/supermodal/render.h AND render_exported EQUAL -1)
+  message(FATAL_ERROR "render.h is installed but supermodal::render is not exported")
 endif()
 
 if(DEFINED PKG_CONFIG_MODULE)
