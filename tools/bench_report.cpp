@@ -2,11 +2,11 @@
 #include "bench_report.h"
 
 #include "cli_common.h"
+#include "frame_capture.h"
 
 #include <array>
 #include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <spawn.h>
@@ -275,7 +275,7 @@ nlohmann::json bench_json(const BenchSummary& s)
 
 std::string bench_plot(const BenchSummary& s, const std::string& png_path)
 {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    if (!on_path("gnuplot"))
         return "gnuplot not found";
     const PlotData plot = plot_data(s);
     if (plot.order.empty())
