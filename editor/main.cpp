@@ -4,6 +4,7 @@
 #include "render_hook.h"
 #include "script.h"
 #include "session.h"
+#include "supermodal/version.h"
 #include "ui.h"
 #include "window.h"
 
@@ -98,6 +99,8 @@ int main(int argc, char** argv)
     app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
     app.add_option("scene", a.scene, "Scene to load first (format v1)");
     app.add_flag("-q,--quiet", a.quiet, "No per-action log");
+    app.set_version_flag("--version", std::string("supermodal ") + supermodal::version(),
+                         "Print the version and exit");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

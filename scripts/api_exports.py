@@ -7,6 +7,8 @@ comments, macros and line breaks cannot fool it.
 
   scripts/api_exports.py          list what is missing (file:line), exit 1 if anything is
   scripts/api_exports.py --fix    insert SM_API (and the api.h include) where it is missing
+  --generated DIR                 also DIR/supermodal/*.h, the headers the build generates (version.h,
+                                  from cmake/version.h.in): checked, never fixed
 
 Needs clang (14 or later) and, for --fix, clang-format; CLANG, CLANGXX and CLANG_FORMAT name other
 binaries.
@@ -25,10 +27,22 @@ PUBLIC = INCLUDE / "supermodal"
 C_HEADER = PUBLIC / "supermodal.h"
 API_HEADER = PUBLIC / "api.h"
 METHOD_KINDS = ("CXXMethodDecl", "CXXConstructorDecl", "CXXDestructorDecl", "CXXConversionDecl")
+GENERATED = []  # include directories of generated public headers (--generated), resolved
+
+
+def public_dirs():
+    return [PUBLIC] + [g / "supermodal" for g in GENERATED]
 
 
 def public_headers():
-    return sorted(p for p in PUBLIC.iterdir() if p.suffix in (".h", ".hpp") and p != API_HEADER)
+    return sorted(p for d in public_dirs() if d.is_dir() for p in d.iterdir()
+                  if p.suffix in (".h", ".hpp") and p != API_HEADER)
+
+
+def shown(path):
+    """A path as reports print it: relative to the repository when inside it."""
+    path = pathlib.Path(path).resolve()
+    return path.relative_to(ROOT) if path.is_relative_to(ROOT) else path
 
 
 def dump_ast(compiler, args, source_text, suffix):
@@ -38,7 +52,8 @@ def dump_ast(compiler, args, source_text, suffix):
         f.write(source_text)
         path = f.name
     try:
-        out = subprocess.run([compiler, *args, "-fsyntax-only", "-DSUPERMODAL_SHARED_LIBS", f"-I{INCLUDE}",
+        includes = [f"-I{d}" for d in [INCLUDE, *GENERATED]]
+        out = subprocess.run([compiler, *args, "-fsyntax-only", "-DSUPERMODAL_SHARED_LIBS", *includes,
                               "-Xclang", "-ast-dump=json", path],
                              check=True, capture_output=True, text=True).stdout
     finally:
@@ -107,7 +122,7 @@ class Walker:
     def visit(self, node, in_record=False):
         kind = node.get("kind")
         file, offset, line = self._begin(node)
-        here = file is not None and pathlib.Path(file).resolve().parent == PUBLIC
+        here = file is not None and pathlib.Path(file).resolve().parent in public_dirs()
         if kind == "FriendDecl":
             for c in node.get("inner", []):  # a friend is not the class's to export; skip its subtree
                 self._begin(c)
@@ -198,7 +213,8 @@ def add_include(text):
 def fix(missing):
     by_file = {}
     for f in missing:
-        by_file.setdefault(f[0], []).append(f)
+        if pathlib.Path(f[0]).resolve().parent == PUBLIC:  # a generated header: its template is the source
+            by_file.setdefault(f[0], []).append(f)
     for path, items in by_file.items():
         data = pathlib.Path(path).read_bytes()  # clang's offsets are in bytes
         text = data.decode("utf-8")
@@ -216,17 +232,20 @@ def fix(missing):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--fix", action="store_true", help="insert SM_API where it is missing")
+    parser.add_argument("--generated", action="append", default=[], metavar="DIR",
+                        help="an include directory of generated public headers (DIR/supermodal/*.h)")
     args = parser.parse_args()
+    GENERATED.extend(pathlib.Path(d).resolve() for d in args.generated)
     missing = find_missing()
     if args.fix:
         changed = fix(missing)
         for path in changed:
-            print(f"annotated {pathlib.Path(path).relative_to(ROOT)}")
+            print(f"annotated {shown(path)}")
         if changed:  # SM_API lengthens lines; the headers are kept clang-formatted
             subprocess.run([os.environ.get("CLANG_FORMAT", "clang-format"), "-i", *changed], check=True)
         missing = find_missing()
     for path, _, kind, name, line, _ in missing:
-        print(f"{pathlib.Path(path).relative_to(ROOT)}:{line}: {kind} {name} is not marked SM_API")
+        print(f"{shown(path)}:{line}: {kind} {name} is not marked SM_API")
     if missing:
         print(f"{len(missing)} public declaration(s) not exported from a shared build "
               "(scripts/api_exports.py --fix marks them)", file=sys.stderr)

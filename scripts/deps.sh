@@ -14,6 +14,7 @@ packages=(
   libassimp-dev        # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
   libgtest-dev         # tests
   libbenchmark-dev     # bench/
+  gnuplot-nox          # `supermodal bench --out`: the speed/accuracy plot (PREFIX.png; skipped without it)
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)
   libglfw3-dev         # editor/: the window of the interactive editor
   libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image_write (PNG)

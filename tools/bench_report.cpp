@@ -2,12 +2,15 @@
 #include "bench_report.h"
 
 #include "cli_common.h"
+#include "frame_capture.h"
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace supermodal::cli
@@ -75,23 +78,38 @@ PlotData plot_data(const BenchSummary& s)
     return p;
 }
 
+/// `text` as a gnuplot single-quoted string. Inside one gnuplot reads nothing but a doubled quote, which
+/// stands for a quote: whatever a path holds, the script reads it as that path and runs nothing of it.
+std::string gnuplot_quoted(const std::string& text)
+{
+    std::string quoted = "'";
+    for (const char c : text) {
+        quoted += c;
+        if (c == '\'')
+            quoted += '\'';
+    }
+    return quoted + "'";
+}
+
 /// The gnuplot script drawing STEM.dat (blocks in `order`, then the front) into STEM.png.
 std::string gnuplot_script(const BenchSummary& s, const std::vector<std::string>& order,
                            const std::string& stem)
 {
     std::string script =
-        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output '" + stem +
-        ".png'\n"
+        "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output " + gnuplot_quoted(stem + ".png") +
+        "\n"
         "set logscale xy\nset grid\nset key outside right top noenhanced\nset termoption noenhanced\n"
         "set xlabel 'cost: CPU ms per simulated second (median ms/step x steps/s)'\n"
         "set ylabel 'trajectory error vs reference: RMS of body centres [m]'\n"
-        "set title 'Speed vs accuracy: " +
-        std::filesystem::path(s.scene).filename().string() + ", " + number(s.seconds) + " s simulated'\n";
+        "set title " +
+        gnuplot_quoted("Speed vs accuracy: " + std::filesystem::path(s.scene).filename().string() + ", " +
+                       number(s.seconds) + " s simulated") +
+        "\n";
     script += "plot ";
     for (size_t i = 0; i < order.size(); ++i) {
         const bool own = order[i] == "scene's own settings";
         script +=
-            "'" + stem + ".dat' index " + std::to_string(i) + " using 1:2 with points pt " +
+            gnuplot_quoted(stem + ".dat") + " index " + std::to_string(i) + " using 1:2 with points pt " +
             (own ? std::string("3 ps 3 lw 3 lc rgb 'black'")
                  : std::to_string(i + 4) + " ps 1.6 lw 2 lc rgb '" + k_colours[i % k_colours.size()] + "'") +
             " title \"" + order[i] + "\", ";
@@ -99,9 +117,32 @@ std::string gnuplot_script(const BenchSummary& s, const std::vector<std::string>
                   " using 1:2:3 with labels offset 0.6,0.6 left font ',8' "
                   "notitle, ";
     }
-    script += "'" + stem + ".dat' index " + std::to_string(order.size()) +
+    script += gnuplot_quoted(stem + ".dat") + " index " + std::to_string(order.size()) +
               " using 1:2 with lines lw 2 lc rgb 'black' dt 2 title 'Pareto front'\n";
     return script;
+}
+
+/// Runs `gnuplot SCRIPT` with no shell in between, so the path reaches gnuplot as one argument whatever
+/// it holds (quotes, $, spaces). gnuplot's output goes to stderr: stdout is the command's JSON or CSV.
+/// True when it exited with 0.
+bool run_gnuplot_script(const std::string& script_path)
+{
+    std::string program = "gnuplot";
+    std::string path = script_path;
+    char* argv[] = {program.data(), path.data(), nullptr};
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+        return false;
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return false;
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 /// Writes STEM.dat and STEM.gp, runs gnuplot and moves STEM.png to png_path; removes the temporary
@@ -113,7 +154,7 @@ std::string run_gnuplot(const std::string& stem, const std::string& data, const 
     std::string e = write_file_atomically(stem + ".dat", data);
     if (e.empty())
         e = write_file_atomically(stem + ".gp", script);
-    if (e.empty() && std::system(("gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0)
+    if (e.empty() && !run_gnuplot_script(stem + ".gp"))
         e = "gnuplot failed on " + stem + ".gp";
     std::error_code ec;
     if (e.empty()) {
@@ -234,13 +275,16 @@ nlohmann::json bench_json(const BenchSummary& s)
 
 std::string bench_plot(const BenchSummary& s, const std::string& png_path)
 {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    if (!on_path("gnuplot"))
         return "gnuplot not found";
     const PlotData plot = plot_data(s);
     if (plot.order.empty())
         return "nothing to plot: no configuration ran with a trajectory error above 0 (a static scene "
                "moves nothing; the log axis has no place for 0)";
-    const std::string stem = png_path + ".tmp." + std::to_string(::getpid());
+    // Starting with '/' or "./": gnuplot reads a name starting with '-' as an option, and a file name
+    // starting with '<' or an output starting with '|' as a shell command.
+    const std::string dir = png_path.starts_with('/') ? "" : "./";
+    const std::string stem = dir + png_path + ".tmp." + std::to_string(::getpid());
     std::string data;
     for (const std::string& k : plot.order)
         data += plot.blocks.at(k) + "\n\n";

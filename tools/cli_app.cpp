@@ -2,6 +2,8 @@
 // The `supermodal` command line: its options (CLI11) and the dispatch to the commands.
 #include "cli_app.h"
 
+#include "supermodal/version.h"
+
 #include <CLI/CLI.hpp>
 #include <exception>
 
@@ -82,6 +84,7 @@ int parse_command_line(int argc, const char* const* argv, Invocation& out)
     CLI::App app{"supermodal: superquadric bodies with modal dynamics and penalty contact.\n"
                  "Exit status: 0 ok, 2 bad input (the message names the file and JSON pointer), 1 internal "
                  "failure."};
+    app.set_version_flag("--version", std::string("supermodal ") + version(), "Print the version and exit");
     app.require_subcommand(1);
     const RunFlags run = add_run_command(app, out.run);
     const std::pair<CLI::App*, Command> commands[] = {
@@ -96,6 +99,8 @@ int parse_command_line(int argc, const char* const* argv, Invocation& out)
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         app.exit(e);

@@ -28,7 +28,7 @@ struct Invocation {
 inline constexpr int k_parsed = -1;
 
 /// Parses argv into `out`. Returns k_parsed, or the exit status when parsing ends the program: 0 after
-/// --help (printed), k_exit_bad_input after a parse error (printed by CLI11 to stderr).
+/// --help or --version (printed), k_exit_bad_input after a parse error (printed by CLI11 to stderr).
 [[nodiscard]] int parse_command_line(int argc, const char* const* argv, Invocation& out);
 
 /// Runs a parsed command; returns its exit status (0 ok, 2 bad input, 1 internal failure).

@@ -22,6 +22,26 @@ Outcome run_cli(const std::string& args)
     return supermodal::test::run_command(std::string(SM_CLI) + " " + args);
 }
 
+/// `text` as one shell word: single-quoted, each quote closed, escaped and reopened.
+std::string shell_quoted(const std::string& text)
+{
+    std::string quoted = "'";
+    for (const char c : text)
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+/// Runs the CLI with `dir` as its working directory.
+Outcome run_cli_in(const fs::path& dir, const std::string& args)
+{
+    return supermodal::test::run_command("cd " + shell_quoted(dir.string()) + " && " + SM_CLI + " " + args);
+}
+
+bool gnuplot_installed()
+{
+    return supermodal::test::run_command("command -v gnuplot").status == 0;
+}
+
 fs::path temp_dir(const char* name)
 {
     const fs::path dir = fs::temp_directory_path() / "supermodal_bench_cli" / name;
@@ -176,4 +196,34 @@ TEST(BenchCli, ModesSweepEndsWithTheFullLattice)
     EXPECT_LT(std::stod(rows.back()[column["frequency_error"]]), 1e-9);
     const size_t rms = column["trajectory_rms_m"];
     EXPECT_LT(std::stod(rows.back()[rms]), std::stod(rows[2][rms])); // full vs r = 1
+}
+
+TEST(BenchCli, OutPrefixIsOnlyEverAFileName)
+{
+    // --out reaches gnuplot (its script, its command line) as a file name and nothing else: a prefix in a
+    // folder whose name closes a single-quoted shell word, runs $(...) and opens a new one (the plot once
+    // ran `touch injected` there), and a relative prefix starting with '<' (gnuplot's "read from a
+    // command"), each write their files under exactly that name and run nothing.
+    const fs::path dir = temp_dir("it's $(touch injected) 'q");
+    const std::string scene = write_scene(dir);
+    const std::string absolute = (dir / "out").string();
+    const std::string relative = "<touch injected;'x";
+    for (const std::string& prefix : {absolute, relative}) {
+        const Outcome o =
+            run_cli_in(dir, "bench " + shell_quoted(scene) + " --repeats 1 --knobs dt --seconds 0.02 --out " +
+                                shell_quoted(prefix) + " 2>&1");
+        ASSERT_EQ(o.status, 0) << o.output;
+        const fs::path stem = fs::path(prefix).is_absolute() ? fs::path(prefix) : dir / prefix;
+        EXPECT_TRUE(fs::exists(stem.string() + ".csv")) << prefix;
+        if (gnuplot_installed()) {
+            EXPECT_TRUE(fs::exists(stem.string() + ".png")) << prefix << "\n" << o.output;
+        }
+    }
+    EXPECT_FALSE(fs::exists(dir / "injected"));
+    EXPECT_FALSE(fs::exists(fs::current_path() / "injected"));
+    // The scene and two prefixes' .csv, .md (and .png): no temporary file is left.
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir))
+        ++files;
+    EXPECT_EQ(files, gnuplot_installed() ? 7 : 5);
 }

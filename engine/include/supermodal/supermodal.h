@@ -48,6 +48,12 @@ SM_API const char* sm_status_string(sm_status status);
  * API on the same thread; copy it to keep it. */
 SM_API const char* sm_last_error(void);
 
+/* ---- Version ---------------------------------------------------------------------------------------- */
+
+/* The library's version, "MAJOR.MINOR.PATCH" (a static string; never fails, leaves sm_last_error()
+ * alone). supermodal/version.h has the headers' version as macros: SM_VERSION_STRING, SM_VERSION_MAJOR. */
+SM_API const char* sm_version(void);
+
 /* ---- Plain data ------------------------------------------------------------------------------------- */
 
 typedef struct sm_vec3 {

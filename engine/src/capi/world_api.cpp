@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// C API: errors, worlds, stepping, snapshots (supermodal/supermodal.h).
+// C API: errors, the version, worlds, stepping, snapshots (supermodal/supermodal.h).
 #include "capi/capi_internal.h"
+#include "supermodal/version.h"
 
 #include <memory>
 #include <utility>
@@ -143,6 +144,11 @@ const char* sm_status_string(sm_status status)
 const char* sm_last_error(void)
 {
     return t_last_error.c_str();
+}
+
+const char* sm_version(void)
+{
+    return version();
 }
 
 sm_world_def sm_world_def_default(void)
