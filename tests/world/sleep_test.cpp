@@ -182,3 +182,31 @@ TEST(Sleep, SnapshotMidSleepRestoresTheSameHash)
 }
 
 } // namespace
+
+TEST(Sleep, SleepersPairWithNothingUntilAMovingBodyWakesThemInTheSameStep)
+{
+    // Two boxes 0.2 mm apart (apart, so two islands; their swept boxes overlap by the gravity sag): once
+    // asleep the broadphase pairs neither with the ground nor with each other. A kinematic plate moving
+    // into the first wakes it, and the first, awake, reaches the second in the same step.
+    sm::World w(sleepy_world_def());
+    sm::test::add_ground(w);
+    const sm::Entity first = sm::create_body(w, box_def({0, 0.1, 0}));
+    const sm::Entity second = sm::create_body(w, box_def({0.4002, 0.1, 0}));
+    ASSERT_GT(steps_until_asleep(w, first, 4.0), 0.0);
+    sm::test::run_steps(w, 1);
+    ASSERT_FALSE(sm::body_is_awake(w, second));
+    EXPECT_EQ(w.profile().pair_count, 0u);
+    EXPECT_EQ(sm::world_sleeping_count(w), 2u);
+
+    sm::BodyDef plate = sm::test::ellipsoid_def({0.05, 0.1, 0.2}, {-0.4, 0.1, 0});
+    plate.motion = sm::MotionType::Kinematic;
+    plate.linear_velocity = {1, 0, 0};
+    (void)sm::create_body(w, plate);
+    bool first_awake = false;
+    for (int i = 0; i < 100 && !first_awake; ++i) {
+        w.step();
+        first_awake = sm::body_is_awake(w, first);
+    }
+    ASSERT_TRUE(first_awake);
+    EXPECT_TRUE(sm::body_is_awake(w, second));
+}

@@ -46,9 +46,17 @@ double max_extent(const Aabb& b)
     return std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
 }
 
+// Whether a pair of these two can matter: one is an awake dynamic body, or one sleeps and the other is
+// a moving kinematic body that may wake it (static and kinematic bodies never pair with each other).
+bool may_pair(const BroadphaseProxy& p, const BroadphaseProxy& q)
+{
+    const bool p_awake = !p.is_static && !p.asleep, q_awake = !q.is_static && !q.asleep;
+    return p_awake || q_awake || (p.asleep && q.moving) || (q.asleep && p.moving);
+}
+
 void add_pair(const BroadphaseProxy& p, const BroadphaseProxy& q, std::vector<BodyPair>& out)
 {
-    if ((p.is_static && q.is_static) || !overlaps(p.box, q.box))
+    if (!may_pair(p, q) || !overlaps(p.box, q.box))
         return;
     out.push_back(p.entity.index < q.entity.index ? BodyPair{p.entity, q.entity}
                                                   : BodyPair{q.entity, p.entity});

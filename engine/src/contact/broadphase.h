@@ -21,6 +21,8 @@ struct BroadphaseProxy {
     Entity entity{};
     Aabb box{};             ///< World frame [m], already grown by any contact margin.
     bool is_static = false; ///< Static and kinematic bodies never pair with each other.
+    bool asleep = false; ///< A sleeping dynamic body: pairs only with awake ones and moving kinematic ones.
+    bool moving = false; ///< A kinematic body with a velocity: may wake a sleeping one.
 };
 
 /// A candidate pair; a.index < b.index.

@@ -99,24 +99,47 @@ bool any_dynamic_collider(Registry& reg)
 }
 
 // One broadphase proxy per body with a collider: its world box swept over the step.
-void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
+// A body's box for the step: its world box swept over the step.
+Aabb swept_box(const WorldDef& def, const BodyModel& m, const Pose& p, const Velocity& v)
 {
     const double dt = def.dt;
+    Aabb box = body_box(m, p);
+    if (m.shape.type != ShapeType::Plane) {
+        // Sweep over the step; rotation and gravity's change of velocity widen it.
+        const Vec3 half = 0.5 * (box.max - box.min);
+        const double spin = length(v.angular) * length(half) * dt;
+        const double sag = length(def.gravity) * dt * dt;
+        const Vec3 grow{spin + sag, spin + sag, spin + sag};
+        const Vec3 move = v.linear * dt;
+        box.min += Vec3{std::min(move.x, 0.0), std::min(move.y, 0.0), std::min(move.z, 0.0)} - grow;
+        box.max += Vec3{std::max(move.x, 0.0), std::max(move.y, 0.0), std::max(move.z, 0.0)} + grow;
+    }
+    return box;
+}
+
+void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
+{
+    const size_t slots = reg.pool().slot_count();
+    io.sleep_boxes.resize(slots);
+    io.sleep_box_set.resize(slots, 0);
     reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, const Velocity& v) {
         if (!m.collider)
             return;
-        Aabb box = body_box(m, p);
-        if (m.shape.type != ShapeType::Plane) {
-            // Sweep over the step; rotation and gravity's change of velocity widen it.
-            const Vec3 half = 0.5 * (box.max - box.min);
-            const double spin = length(v.angular) * length(half) * dt;
-            const double sag = length(def.gravity) * dt * dt;
-            const Vec3 grow{spin + sag, spin + sag, spin + sag};
-            const Vec3 move = v.linear * dt;
-            box.min += Vec3{std::min(move.x, 0.0), std::min(move.y, 0.0), std::min(move.z, 0.0)} - grow;
-            box.max += Vec3{std::max(move.x, 0.0), std::max(move.y, 0.0), std::max(move.z, 0.0)} + grow;
+        const Sleep* sleep = reg.find<Sleep>(e);
+        const bool asleep = m.motion == MotionType::Dynamic && sleep != nullptr && sleep->asleep;
+        uint8_t& set = io.sleep_box_set[e.index];
+        if (!asleep)
+            set = 0;
+        else if (set == 0) {
+            io.sleep_boxes[e.index] = swept_box(def, m, p, v);
+            set = 1;
         }
-        io.proxies.push_back({.entity = e, .box = box, .is_static = m.motion != MotionType::Dynamic});
+        const bool moving = m.motion == MotionType::Kinematic && (v.linear != Vec3{} || v.angular != Vec3{});
+        io.proxies.push_back({.entity = e,
+                              .box = asleep ? io.sleep_boxes[e.index] : swept_box(def, m, p, v),
+                              .is_static = m.motion != MotionType::Dynamic,
+                              .asleep = asleep,
+                              .moving = moving});
     });
 }
 
@@ -200,10 +223,19 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
         begin_step_events(io.events, 0);
         return def.substep_count;
     }
-    add_swept_proxies(def, reg, io);
-    find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
-    drop_pairs_apart(reg, io);
-    settle_sleeping_pairs(reg, io);
+    // Sleeping bodies pair only with awake and moving ones; when those wake an island, its bodies'
+    // pairs with other sleepers are found by running the broadphase again (rare: a wake).
+    do {
+        io.proxies.clear();
+        io.pairs.clear();
+        add_swept_proxies(def, reg, io);
+        // Nothing awake or moving: no pair can matter (a scene that has all gone to sleep).
+        if (std::none_of(io.proxies.begin(), io.proxies.end(),
+                         [](const BroadphaseProxy& x) { return (!x.is_static && !x.asleep) || x.moving; }))
+            break;
+        find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+        drop_pairs_apart(reg, io);
+    } while (settle_sleeping_pairs(reg, io));
     begin_step_events(io.events, io.pairs.size());
     io.support_calls = 0;
     io.touching_pairs = 0;
@@ -223,10 +255,13 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
     for (std::vector<ContactPoint>& points : io.part_points)
         points.clear();
     io.pair_points.resize(io.pairs.size());
-    // World boxes once per body, not once per pair it is in (three support-map calls each).
+    // World boxes once per body, not once per pair it is in (three support-map calls each); none for a
+    // sleeping body, which is in no pair by now (those an awake body reached woke).
     io.boxes.resize(reg.pool().slot_count());
     for_parts(par, io.proxies.size(), [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
+            if (io.proxies[i].asleep)
+                continue;
             const Entity e = io.proxies[i].entity;
             const BodyModel& m = reg.get<BodyModel>(e);
             if (m.shape.type != ShapeType::Plane)

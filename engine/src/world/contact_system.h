@@ -55,9 +55,13 @@ struct ContactWorld {
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].
-    std::vector<Aabb> swept;                 ///< Scratch: swept box per entity index [m], world.
-    BroadphaseScratch broadphase;            ///< Scratch.
-    std::vector<BodyPair> pairs;             ///< Derived: candidate pairs of this step, sorted.
+    /// Scratch: per entity index, a sleeping body's swept box, computed once while it sleeps (its pose
+    /// and velocity do not change then, so reusing it gives the same box) [m]; and whether it is set.
+    std::vector<Aabb> sleep_boxes;
+    std::vector<uint8_t> sleep_box_set;
+    std::vector<Aabb> swept;                            ///< Scratch: swept box per entity index [m], world.
+    BroadphaseScratch broadphase;                       ///< Scratch.
+    std::vector<BodyPair> pairs;                        ///< Derived: candidate pairs of this step, sorted.
     std::vector<std::vector<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
     std::vector<PairPoints> pair_points;                ///< Derived: per pair, where its points are.
     std::vector<PairForce> pair_force;                  ///< Scratch: per pair, this substep's forces.

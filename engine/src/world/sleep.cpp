@@ -152,26 +152,25 @@ void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io)
     }
 }
 
-void settle_sleeping_pairs(Registry& reg, ContactWorld& io)
+bool settle_sleeping_pairs(Registry& reg, ContactWorld& io)
 {
     ParkedContacts& p = io.parked;
     classify_bodies(reg, p.body_class);
-    // To a fixed point: a woken body may reach another sleeping island within this step too.
-    for (;;) {
-        p.wake.clear();
-        for (const BodyPair& pair : io.pairs) {
-            note_reached(reg, p.body_class, pair.a, pair.b, p.wake);
-            note_reached(reg, p.body_class, pair.b, pair.a, p.wake);
-        }
-        if (p.wake.empty())
-            break;
+    p.wake.clear();
+    for (const BodyPair& pair : io.pairs) {
+        note_reached(reg, p.body_class, pair.a, pair.b, p.wake);
+        note_reached(reg, p.body_class, pair.b, pair.a, p.wake);
+    }
+    if (!p.wake.empty()) {
         wake_islands(reg, io, p.wake);
+        return true;
     }
     // With nobody asleep every pair has an awake dynamic end, so this drops nothing.
     std::erase_if(io.pairs, [&](const BodyPair& pair) {
         return class_of(p.body_class, pair.a.index) != k_awake &&
                class_of(p.body_class, pair.b.index) != k_awake;
     });
+    return false;
 }
 
 namespace

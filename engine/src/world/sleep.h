@@ -39,9 +39,10 @@ void wake_island_of(Registry& reg, ContactWorld& io, Entity body);
 void wake_every_body(Registry& reg, ContactWorld& io);
 /// Before the broadphase: wakes sleeping islands that an unbroken constraint joins to an awake body.
 void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io);
-/// After the broadphase: wakes the sleeping islands an awake or moving body may reach this step, then
-/// drops the pairs with no awake dynamic body (sleeping against sleeping or static).
-void settle_sleeping_pairs(Registry& reg, ContactWorld& io);
+/// After the broadphase: wakes the sleeping islands an awake or moving body may reach this step and
+/// returns true (the broadphase runs again, so the woken bodies find their pairs with other sleepers);
+/// else drops the pairs with no awake dynamic body and returns false.
+[[nodiscard]] bool settle_sleeping_pairs(Registry& reg, ContactWorld& io);
 /// After the step: sleep timers, islands, and the islands that fall asleep. Returns the bodies asleep.
 size_t update_sleep(const WorldDef& def, Registry& reg, ContactWorld& io, const ConstraintWorld& cw,
                     SleepScratch& scratch);
