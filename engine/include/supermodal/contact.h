@@ -47,10 +47,10 @@ enum class ContactSolver : uint8_t {
 /// frequency behaves alike for any masses; a static partner doubles it (the point's mass is the
 /// moving body's alone, so it would otherwise sag twice as far).
 struct SoftContactDef {
-    double frequency_hz = 0.0;   ///< Contact spring frequency [Hz]; 0 = half the substep rate, at most 60 Hz
-                                 ///< (1/(2·h)). Higher sinks less under load; the solve stays stable.
-    double damping_ratio = 10.0; ///< [-]: heavily damped, so a spring pushes out without bouncing.
-    double push_out_speed = 3.0; ///< Fastest separation the spring may cause [m/s].
+    double frequency_hz = 0.0;      ///< Contact spring frequency [Hz]; 0 = min(1/(2·h), 60 Hz). Higher sinks
+                                    ///< less under load; the solve stays stable.
+    double damping_ratio = 10.0;    ///< [-]: heavily damped, so a spring pushes out without bouncing.
+    double push_out_speed = 3.0;    ///< Fastest separation the spring may cause [m/s].
     double restitution_speed = 1.0; ///< Approach speed [m/s] below which a contact does not bounce.
     int iterations = 10; ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
                          ///< joints join them (max with WorldDef::constraint_iterations), and as many
