@@ -8,10 +8,10 @@
 namespace supermodal
 {
 
-bool overlaps(const Aabb& a, const Aabb& b)
+bool overlaps(const Aabb& a, const Aabb& b, double margin)
 {
-    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-           a.min.z <= b.max.z && b.min.z <= a.max.z;
+    return a.min.x <= b.max.x + margin && b.min.x <= a.max.x + margin && a.min.y <= b.max.y + margin &&
+           b.min.y <= a.max.y + margin && a.min.z <= b.max.z + margin && b.min.z <= a.max.z + margin;
 }
 
 namespace

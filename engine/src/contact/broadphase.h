@@ -49,7 +49,7 @@ struct BroadphaseScratch {
 void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, BroadphaseScratch& io_scratch,
                             std::vector<BodyPair>& out_pairs);
 
-/// True if the two boxes overlap or touch.
-[[nodiscard]] bool overlaps(const Aabb& a, const Aabb& b);
+/// True if the two boxes overlap or touch, or come within `margin` [m] of each other.
+[[nodiscard]] bool overlaps(const Aabb& a, const Aabb& b, double margin = 0.0);
 
 } // namespace supermodal

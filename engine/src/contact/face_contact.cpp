@@ -194,7 +194,8 @@ struct Reference {
     double overlap;  // along face.normal [m]
     Vec3 inc_lowest; // the incident body's support point along −face.normal [m], world
     bool ref_is_a;
-    double gap; // points within this gap [m] count (speculative); 0: only touching ones
+    double gap;        // points within this gap [m] count (speculative); 0: only touching ones
+    double patch_drop; // the patches' least drop [m]
 };
 
 // Appends a contact seen from the reference and the incident body, in the query's A, B order.
@@ -219,11 +220,14 @@ int clipped_points(const Reference& r, FaceContact& fc)
     Vec3 under;
     const double under_pole =
         lift(*r.inc, inc_face, r.face.pole, under) ? dot(r.face.normal, r.face.pole - under) : r.overlap;
-    if (!(under_pole > 0.0))
+    if (!(under_pole > -r.gap))
         return 0;
-    // A speculative caller's patches reach at least half its gap, so a face resting on a small overlap
-    // still stands on its corners (rows that hold once they would close).
-    const double drop = std::max(k_face_patch_drop * under_pole, 0.5 * r.gap);
+    // A speculative caller's patches reach at least its least drop, so a face resting on a small
+    // overlap (or none yet) still stands on its corners (rows that hold once they would close).
+    const double drop = std::max(k_face_patch_drop * under_pole, r.patch_drop);
+    // Corners count down to three times that below the faces' own gap (two patches' drops, and one for
+    // a slight tilt; none: touching ones only). Parallel faces put their corners at exactly two.
+    const double keep = std::min(under_pole, 0.0) - 3.0 * r.patch_drop;
     const PatchSize ref_size = face_patch(r.ref->shape(), r.face.axis, drop);
     const PatchSize inc_size = face_patch(r.inc->shape(), inc_face.axis, drop);
     Polygon poly;
@@ -245,7 +249,7 @@ int clipped_points(const Reference& r, FaceContact& fc)
             !lift(*r.ref, r.face, on_inc, on_ref))
             continue;
         const double depth = dot(r.face.normal, on_ref - on_inc);
-        if (!(depth > -r.gap))
+        if (!(depth > keep))
             continue;
         ++touching;
         add_point(r, on_ref, on_inc, depth, fc);
@@ -408,7 +412,8 @@ bool face_height(const ShapeDef& shape, int axis, double side, Vec3& p)
     return true;
 }
 
-FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess, double gap)
+FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess, double gap,
+                         double patch_drop)
 {
     FaceContact fc;
     const Frame fa = frame_of(a), fb = frame_of(b);
@@ -417,7 +422,7 @@ FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess
     const Vec3 low_b = body_support(b, -1.0 * face_a.normal);
     ++fc.support_calls;
     const double overlap_a = dot(face_a.normal, face_a.pole - low_b);
-    if (!(overlap_a > 0.0)) {
+    if (!(overlap_a > -gap)) {
         fc.kind = FaceContact::Kind::Apart;
         fc.normal = -1.0 * face_a.normal;
         return fc;
@@ -425,7 +430,7 @@ FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess
     const Vec3 low_a = body_support(a, -1.0 * face_b.normal);
     ++fc.support_calls;
     const double overlap_b = dot(face_b.normal, face_b.pole - low_a);
-    if (!(overlap_b > 0.0)) {
+    if (!(overlap_b > -gap)) {
         fc.kind = FaceContact::Kind::Apart;
         fc.normal = face_b.normal;
         return fc;
@@ -435,8 +440,8 @@ FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess
     const bool was_a = std::abs(dot(guess, face_a.normal)) >= std::abs(dot(guess, face_b.normal));
     const bool ref_a = was_a ? !(overlap_b < (1.0 - k_face_switch) * overlap_a)
                              : overlap_a < (1.0 - k_face_switch) * overlap_b;
-    const Reference r = ref_a ? Reference{&fa, &fb, face_a, overlap_a, low_b, true, gap}
-                              : Reference{&fb, &fa, face_b, overlap_b, low_a, false, gap};
+    const Reference r = ref_a ? Reference{&fa, &fb, face_a, overlap_a, low_b, true, gap, patch_drop}
+                              : Reference{&fb, &fa, face_b, overlap_b, low_a, false, gap, patch_drop};
     fc.normal = ref_a ? -1.0 * face_a.normal : face_b.normal;
     fc.depth = r.overlap;
     if (clipped_points(r, fc) < 2) {
@@ -452,21 +457,22 @@ FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess
     Vec3 on_ref;
     if (lift(*r.ref, r.face, r.inc_lowest, on_ref)) {
         const double depth = dot(r.face.normal, on_ref - r.inc_lowest);
-        if (depth > 0.0)
+        if (depth > -gap)
             add_point(r, on_ref, r.inc_lowest, depth, fc);
     }
     fc.kind = FaceContact::Kind::Faces;
     return fc;
 }
 
-FaceContact face_contact_plane(const BodyView& body, const Vec3& normal, double offset, double gap)
+FaceContact face_contact_plane(const BodyView& body, const Vec3& normal, double offset, double gap,
+                               double patch_drop)
 {
     FaceContact fc;
     const Frame f = frame_of(body);
     const Vec3 lowest = body_support(body, -1.0 * normal);
     fc.support_calls = 1;
     const double depth = offset - dot(normal, lowest);
-    if (!(depth > 0.0)) {
+    if (!(depth > -gap)) {
         fc.kind = FaceContact::Kind::Apart;
         return fc;
     }
@@ -475,14 +481,14 @@ FaceContact face_contact_plane(const BodyView& body, const Vec3& normal, double 
     // The plane is flat: the body's face takes the whole half of the depth.
     const Face face = face_towards(f, -1.0 * normal);
     const PatchSize size =
-        face_patch(f.shape(), face.axis, std::max(2.0 * k_face_patch_drop * depth, 0.5 * gap));
+        face_patch(f.shape(), face.axis, std::max(2.0 * k_face_patch_drop * depth, patch_drop));
     int touching = 0, near = 0;
     for (const Vec3& corner : patch_corners(f, face, size)) {
         Vec3 p;
         if (!lift(f, face, corner, p))
             continue;
         const double d = offset - dot(normal, p);
-        if (d > -gap) {
+        if (d > std::min(depth, 0.0) - 2.0 * patch_drop) {
             ++near;
             touching += d > 0.0 ? 1 : 0;
             add_point(fc, p, p + d * normal, d);

@@ -64,18 +64,20 @@ struct FaceContact {
 [[nodiscard]] bool has_face_patches(const Collider& c);
 
 /// Face query of two bodies with face patches; `guess` is the pair's last normal (from B towards A,
-/// world), or the centre line when there is none. With `gap` > 0 [m] (a speculative solver's), the
-/// patches reach at least where the surfaces have dropped by gap/2, and corners within the gap are
-/// points too (negative depth): a face resting on a tiny overlap stands on its corners.
+/// world), or the centre line when there is none. With `gap` > 0 [m] (a speculative solver's), bodies
+/// apart by less than it are not Apart and their deepest point counts (negative depth); the patches
+/// reach at least where the surfaces have dropped by `patch_drop` [m], and corners down to three times
+/// that below the faces' own gap count too, so a face resting on a tiny overlap, or about to touch, stands
+/// on its corners.
 [[nodiscard]] FaceContact face_contact(const BodyView& a, const BodyView& b, const Vec3& guess,
-                                       double gap = 0.0);
+                                       double gap = 0.0, double patch_drop = 0.0);
 
 /// Face query of a body with face patches against the plane {x : normal·x = offset} below it (normal
 /// unit, pointing out of the plane's solid towards the body); points' on_b lie on the plane. Never
 /// NotFaces: the plane is all face, so an edge or corner on it gets its deepest point and the ends of
-/// the edge's flat part. `gap` as for face_contact.
+/// the edge's flat part. `gap` and `patch_drop` as for face_contact.
 [[nodiscard]] FaceContact face_contact_plane(const BodyView& body, const Vec3& normal, double offset,
-                                             double gap = 0.0);
+                                             double gap = 0.0, double patch_drop = 0.0);
 
 /// Patch half-sizes [m] of a face of an undeformed superquadric, along the shape axes (k + 1) % 3 and
 /// (k + 2) % 3 for the face on axis k: where the surface has dropped by `drop` [m] below the pole's

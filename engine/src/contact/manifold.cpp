@@ -18,11 +18,13 @@ namespace
 constexpr double k_merge_rel = 0.1;
 // Old points lifted off by more than this (fraction of the smallest radius) are dropped.
 constexpr double k_separate_rel = 0.02;
-// A speculative caller's face patches reach where the surfaces have dropped by half this (fraction of the
-// smaller smallest radius), and their corners within it are points [-]: a face resting on the tiny
-// overlap of a stiff soft contact still stands on its corners (one point at its pole let a resting
-// ε = 0.5 body rock and gain energy at a 0.2 ms step, measured).
-constexpr double k_face_gap_rel = 2e-3;
+// A speculative caller's face patches reach where the surfaces have dropped by this (fraction of the
+// smaller smallest radius) [-]: a face resting on the tiny overlap of a stiff soft contact still stands
+// on its corners (one point at its pole let a resting ε = 0.5 body rock and gain energy at a 0.2 ms
+// step, measured). Its points within k_separate_rel of touching are rows, also of bodies not touching
+// yet: boxes of a column placed touching fell freely until each pair overlapped, a cascade that took
+// 14 steps to reach the top at 1/60 s (measured).
+constexpr double k_face_patch_rel = 1e-3;
 // Tilts of the support direction towards a face diagonal, largest first: on an ε = 0.3 face they reach
 // 1.0, 0.67, 0.44, 0.30 of the way to the edge (x/a = t^(ε/(2−ε))), so the outermost point still inside
 // the other body marks the edge of the patch; on a sharp box (ε ≤ 0.1) every tilt gives the corner.
@@ -308,12 +310,14 @@ double overlap_along(const BodyView& a, const BodyView& b, const Vec3& n, int& c
 int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculative, PairManifold& io,
                   std::vector<ContactPoint>& out, int& calls)
 {
+    const double gap = speculative ? k_separate_rel * r : 0.0;
     const Vec3 stored = rotate(a.orientation, io.normal);
     const bool has_normal = length(io.normal) > 0.0;
-    if (io.count == 0 && has_normal && !(overlap_along(a, b, stored, calls) > 0.0))
+    if (io.count == 0 && has_normal && !(overlap_along(a, b, stored, calls) > -gap))
         return 0; // still apart along it
     const Vec3 guess = has_normal ? stored : body_shape_centre(a) - body_shape_centre(b);
-    const FaceContact fc = face_contact(a, b, normalized(guess), speculative ? k_face_gap_rel * r : 0.0);
+    const FaceContact fc =
+        face_contact(a, b, normalized(guess), gap, speculative ? k_face_patch_rel * r : 0.0);
     calls += fc.support_calls;
     // A speculative solver keeps the corners that lifted by less than the kept gap as rows: a resting
     // face whose corners flicker between touching and not keeps its support on all of them.
@@ -342,6 +346,11 @@ int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculati
 }
 
 } // namespace
+
+double speculative_gap(const Collider& a, const Collider& b)
+{
+    return k_separate_rel * std::min(smallest_radius(a), smallest_radius(b));
+}
 
 int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
                      bool speculative, QueryCost* io_cost)
@@ -442,7 +451,8 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
             old.push_back(c);
     }
     if (has_face_patches(*body.collider)) {
-        const FaceContact fc = face_contact_plane(body, n, offset, speculative ? k_face_gap_rel * r : 0.0);
+        const FaceContact fc = face_contact_plane(body, n, offset, speculative ? k_separate_rel * r : 0.0,
+                                                  speculative ? k_face_patch_rel * r : 0.0);
         calls += fc.support_calls;
         if (fc.kind == FaceContact::Kind::Apart || fc.kind == FaceContact::Kind::Faces)
             return finish_faces(body, nullptr, fc, old, merge, !body_is_a, speculative, io, out);

@@ -47,6 +47,10 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io_mani
                      std::vector<ContactPoint>& out_points, bool speculative = false,
                      QueryCost* io_cost = nullptr);
 
+/// The gap within which a speculative caller's points of two bodies count [m]: 2% of the smaller
+/// smallest radius. Their boxes grown by it are what decides whether the pair is queried.
+[[nodiscard]] double speculative_gap(const Collider& a, const Collider& b);
+
 /// Same for a convex body against a plane: the manifold's A is always the body; normals are flipped
 /// for the output when body_is_a is false (as collide_plane).
 int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a,

@@ -76,7 +76,7 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
             collide_manifold_plane(a, b, true, out_manifold, out_points, speculative, &out_cost);
         else if (plane_a)
             collide_manifold_plane(b, a, false, out_manifold, out_points, speculative, &out_cost);
-        else if (overlaps(a.box, b.box))
+        else if (overlaps(a.box, b.box, speculative ? speculative_gap(*ma.collider, *mb.collider) : 0.0))
             collide_manifold(a, b, out_manifold, out_points, speculative, &out_cost);
         else
             out_manifold.count = 0;
