@@ -56,14 +56,18 @@ for i in range(n):
            -half + pitch * (cell // side + 0.5) + jitter * rnd()]
     bodies.append(soft_ball(i, pos) if soft else ellipsoid(i, pos))
 
+# The scene schema, relative to samples/ where the scenes are kept (docs/scene_format.md).
+SCHEMA = "../docs/scene.schema.json"
 if soft:
-    head = {"comment": f"{n} soft modal balls falling into an open box (the thread benchmark's modal "
+    head = {"$schema": SCHEMA,
+            "comment": f"{n} soft modal balls falling into an open box (the thread benchmark's modal "
                        "scene); written by bench/make_pile_scene.py --soft.",
             "settings": {"dt": 1.0 / 240.0, "duration": 3.0},
             "materials": {"rubber": {"density": 1000, "young": 1e6, "poisson": 0.45, "friction": 0.6,
                                      "restitution": 0.3, "damping_ratio": 0.05}}}
 else:
-    head = {"comment": f"Issue #5 pile protocol, {n} ellipsoids falling into an open box; written by "
+    head = {"$schema": SCHEMA,
+            "comment": f"Issue #5 pile protocol, {n} ellipsoids falling into an open box; written by "
                        "bench/make_pile_scene.py.",
             "settings": {"dt": 1.0 / 240.0, "duration": 3.0},
             "materials": {"plastic": {"density": 1000, "friction": 0.5}}}

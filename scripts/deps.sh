@@ -13,6 +13,7 @@ packages=(
   libccd-dev           # contact: MPR penetration depth of convex pairs
   libassimp-dev        # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
   libgtest-dev         # tests
+  python3 python3-jsonschema   # tests/schema: the scene schema against the loader
   libbenchmark-dev     # bench/
   gnuplot-nox          # `supermodal bench --out`: the speed/accuracy plot (PREFIX.png; skipped without it)
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)

@@ -23,6 +23,12 @@ file(STRINGS ${prefix}/include/supermodal/version.h version_line REGEX "#define 
 if(NOT version_line STREQUAL "#define SM_VERSION_STRING \"${VERSION}\"")
   message(FATAL_ERROR "installed supermodal/version.h: '${version_line}', expected version ${VERSION}")
 endif()
+# The scene schema, as in the source tree.
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${SOURCE_DIR}/docs/scene.schema.json
+  ${prefix}/share/supermodal/scene.schema.json RESULT_VARIABLE schema_differs)
+if(NOT schema_differs EQUAL 0)
+  message(FATAL_ERROR "share/supermodal/scene.schema.json is not installed, or differs from docs/")
+endif()
 file(READ ${prefix}/${LIBDIR}/cmake/supermodal/supermodalTargets.cmake targets)
 string(FIND "${targets}" "add_library(supermodal::render " render_exported)
 if(EXISTS ${prefix}/include/supermodal/render.h AND render_exported EQUAL -1)
