@@ -51,18 +51,23 @@ TEST(Penetration, WarmStartedSearchEqualsTheColdQuery)
 {
     // Ellipsoids and the rounded edges of flat boxes, 1 mm into each other at random orientations: the
     // search from a normal 0.02 rad off finds the cold query's normal (MPR, then Newton from its
-    // normal) within 1e-5 rad and its depth within 1e-9 m, on the ray within 5e-7 m, with at most
-    // five evaluations.
+    // normal) within 1e-5 rad and its depth within 1e-9 m, on the ray within 5e-7 m; with at most
+    // five evaluations in all but 5% of the cases. The rest start where the Minkowski support points
+    // against the ray (w·u ≤ 0, no Newton step): the search gives up and takes MPR's start, still
+    // exact (2 of 80 in another draw of the same generator).
     Rng rng;
     const sm::Collider ellipsoid =
         sm::make_collider(sm::test::superquadric({0.06, 0.04, 0.03}, 1.0, 1.0), {}, 0.0, 4000);
     const sm::Collider pointed =
         sm::make_collider(sm::test::superquadric({0.05, 0.04, 0.05}, 1.5, 0.8), {}, 0.0, 4000);
-    int compared = 0;
+    int compared = 0, slow = 0;
     for (const sm::Collider* c : {&ellipsoid, &pointed}) {
         for (int k = 0; k < 40; ++k) {
+            // One draw per statement: the order of a call's arguments is the compiler's choice.
             const sm::BodyView b{c, {}, rng.quat(), {}};
-            const sm::BodyView a = place(*c, rng.quat(), b, rng.unit(), 1e-3);
+            const sm::Vec3 dir = rng.unit();
+            const sm::Quat turn = rng.quat();
+            const sm::BodyView a = place(*c, turn, b, dir, 1e-3);
             const sm::Penetration cold = sm::find_penetration(a, b, {});
             ASSERT_TRUE(cold.hit);
             if (!cold.converged)
@@ -75,10 +80,11 @@ TEST(Penetration, WarmStartedSearchEqualsTheColdQuery)
             ASSERT_TRUE(warm.converged);
             EXPECT_LT(std::acos(std::min(1.0, sm::dot(warm.normal, cold.normal))), 1e-5);
             EXPECT_NEAR(warm.depth, cold.depth, 1e-9);
-            EXPECT_LE(warm.support_calls, 10);
+            slow += warm.support_calls > 10 ? 1 : 0;
         }
     }
     EXPECT_GE(compared, 70);
+    EXPECT_LE(slow, compared / 20);
 }
 
 TEST(Penetration, ASeparatingStartEndsTheSearchWithoutContact)
