@@ -75,6 +75,15 @@ if(SAMPLE STREQUAL "c_minimal") # the C host: its own output checks
   return()
 endif()
 
+if(SAMPLE STREQUAL "embed_in_code") # bodies and joints made in code, drawn between steps: checks itself
+  run(${host}/embed_in_code)
+  if(NOT last_output MATCHES "\nok\n?$")
+    message(FATAL_ERROR "unexpected host output:\n${last_output}")
+  endif()
+  message(STATUS "host output:\n${last_output}")
+  return()
+endif()
+
 if(SAMPLE STREQUAL "render_minimal")
   run(${host}/render_minimal ${SOURCE_DIR}/tests/tools/scenes/projectile.json ${WORK_DIR}/frame.png)
   if(NOT last_output MATCHES "wrote .*frame.png: 160x120 on " OR NOT EXISTS ${WORK_DIR}/frame.png)
