@@ -101,15 +101,8 @@ void tilted_supports(const BodyView& body, const Vec3& dir, int& calls, Accept&&
 Penetration mpr_only(const BodyView& a, const BodyView& b)
 {
     const MprResult mpr = mpr_penetration(a, b);
-    Penetration r{.hit = mpr.hit, .support_calls = 2 * mpr.support_calls};
-    if (!mpr.hit)
-        return r;
-    r.depth = mpr.depth;
-    r.normal = mpr.normal;
-    r.on_a = body_support(a, -1.0 * mpr.normal);
-    r.on_b = body_support(b, mpr.normal);
-    r.point = mpr.point;
-    r.support_calls += 2;
+    Penetration r = penetration_from_mpr(a, b, mpr);
+    r.support_calls += 2 * mpr.support_calls;
     return r;
 }
 

@@ -196,15 +196,23 @@ Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& w
     r.support_calls += calls;
     if (r.converged && r.hit && (target == PenetrationTarget::RayExit || proven(a, b, r)))
         return r;
-    // Newton failed from MPR's normal too: MPR's answer, with the deepest points along its normal.
-    r.hit = true;
-    r.converged = false;
+    // Newton failed from MPR's normal too: MPR's answer.
+    Penetration m = penetration_from_mpr(a, b, mpr);
+    m.support_calls += r.support_calls;
+    return m;
+}
+
+Penetration penetration_from_mpr(const BodyView& a, const BodyView& b, const MprResult& mpr)
+{
+    Penetration r{.hit = mpr.hit};
+    if (!mpr.hit)
+        return r;
     r.depth = mpr.depth;
     r.normal = mpr.normal;
     r.on_a = body_support(a, -1.0 * mpr.normal);
     r.on_b = body_support(b, mpr.normal);
     r.point = mpr.point;
-    r.support_calls += 2;
+    r.support_calls = 2;
     return r;
 }
 

@@ -11,6 +11,7 @@
 // MPR's dozens. MPR (libccd) gives the start when there is none or Newton does not converge.
 #pragma once
 
+#include "contact/mpr.h"
 #include "contact/narrowphase.h"
 
 namespace supermodal
@@ -47,6 +48,10 @@ inline constexpr int k_penetration_max_evaluations = 6;
 
 /// The pair's penetration: Newton from `warm` (the pair's last normal, world; zero for none); else
 /// from MPR's normal; MPR's own answer when neither converges.
+/// MPR's answer as a Penetration (not converged), with the deepest points along its normal: the two
+/// support-map evaluations they take are its support_calls.
+[[nodiscard]] Penetration penetration_from_mpr(const BodyView& a, const BodyView& b, const MprResult& mpr);
+
 [[nodiscard]] Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm,
                                            PenetrationTarget target = PenetrationTarget::RayExit);
 
