@@ -29,6 +29,13 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# node and npm run the Khronos glTF validator (tests/gltf). Debian's packages only when no node is on
+# the PATH: a node from elsewhere brings its own npm, and Debian's npm would conflict with it.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  for p in nodejs npm; do
+    dpkg -s "$p" 2>/dev/null | grep -q '^Status: install ok installed' || missing+=("$p")
+  done
+fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "deps: installing ${missing[*]}"

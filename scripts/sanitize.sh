@@ -15,6 +15,7 @@ CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DSUPERMODAL_SANITIZE=ON -DSUPERMODAL_WERROR=ON \
   -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)"
+./scripts/gltf_validator.sh "$build" # tests/gltf checks the sanitized exporter's GLBs too
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # The install test rebuilds a host program outside the sanitized flags; it is covered by test.sh.

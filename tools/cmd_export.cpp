@@ -85,6 +85,17 @@ void print_export_report(const ExportOptions& o, const ExportRecording& rec, siz
     std::printf("\n");
 }
 
+// The scene's body colours (as the renderer draws them) for the GLB's materials. The recording has the
+// scene's bodies in order, planes left out.
+void set_base_colors(const Scene& scene, ExportRecording& rec)
+{
+    const std::vector<Vec3> colors = scene_body_colors(scene);
+    size_t next = 0;
+    for (size_t i = 0; i < scene.bodies.size() && next < rec.bodies.size(); ++i)
+        if (scene.bodies[i].def.shape.type != ShapeType::Plane)
+            rec.bodies[next++].base_color = colors[i];
+}
+
 } // namespace
 
 CLI::App* add_export_command(CLI::App& app, ExportOptions& o)
@@ -132,8 +143,10 @@ int export_command(const ExportOptions& o)
     std::vector<ExportBodyMesh> meshes; // the scene's "mesh" files replace the tessellation
     for (const SceneBody& b : scene->bodies)
         if (b.render_mesh)
-            meshes.push_back({b.def.name, b.render_mesh});
-    const Result<ExportRecording> rec = record_animation(*world, def, meshes);
+            meshes.push_back({b.def.name, b.render_mesh, b.render_look});
+    Result<ExportRecording> rec = record_animation(*world, def, meshes);
+    if (rec)
+        set_base_colors(*scene, *rec);
     ExportTimes times;
     times.record_seconds = seconds_since(start);
     if (!rec) {

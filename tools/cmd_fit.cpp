@@ -6,6 +6,7 @@
 #include "supermodal/fit.h"
 #include "supermodal/mesh_io.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -40,21 +41,79 @@ nlohmann::json report_json(const FitResult& f, const std::string& name)
             {"starts", f.starts}, {"acceptable", f.acceptable}};
 }
 
-// The mesh in the fitted body's shape frame, p_shape = R⁻¹(p − position), as OBJ text (positions and
-// triangles; normals are rebuilt from the faces by whoever reads it).
-std::string mesh_in_body_frame_obj(const TriangleMesh& mesh, const FitResult& f)
+// Material k's name in OBJ and MTL, which split names at spaces: its own name made safe, or
+// "material_K" when that is empty or an earlier material's.
+std::string obj_material_name(const MeshLook& look, size_t k)
+{
+    const auto safe = [&](size_t i) {
+        std::string name = look.materials[i].name;
+        for (char& c : name)
+            if (c == ' ' || c == '\t' || c == '#')
+                c = '_';
+        return name;
+    };
+    const std::string name = safe(k);
+    for (size_t i = 0; i < k; ++i)
+        if (safe(i) == name)
+            return "material_" + std::to_string(k);
+    return name.empty() ? "material_" + std::to_string(k) : name;
+}
+
+// The look's materials as MTL text: base colour (Kd), opacity (d) and the base colour image (map_Kd),
+// relative to the folder the MTL is written to.
+std::string materials_mtl(const MeshLook& look, const std::filesystem::path& folder)
+{
+    std::string out = "# materials of the attached mesh, written by supermodal fit\n";
+    char line[160];
+    for (size_t k = 0; k < look.materials.size(); ++k) {
+        const MeshMaterial& m = look.materials[k];
+        out += "newmtl " + obj_material_name(look, k) + "\n";
+        std::snprintf(line, sizeof line, "Kd %.6g %.6g %.6g\nd %.6g\n", m.base_color[0], m.base_color[1],
+                      m.base_color[2], m.base_color[3]);
+        out += line;
+        if (!m.base_color_texture.empty()) {
+            std::error_code ec;
+            const std::filesystem::path rel = std::filesystem::relative(m.base_color_texture, folder, ec);
+            out += "map_Kd " + (ec || rel.empty() ? m.base_color_texture : rel.generic_string()) + "\n";
+        }
+    }
+    return out;
+}
+
+// The mesh in the fitted body's shape frame, p_shape = R⁻¹(p − position), as OBJ text: positions,
+// texture coordinates and triangles grouped by material (`mtllib` names the MTL file; empty: none).
+// Normals are rebuilt from the faces by whoever reads it.
+std::string mesh_in_body_frame_obj(const TriangleMesh& mesh, const MeshLook& look, const std::string& mtllib,
+                                   const FitResult& f)
 {
     std::string out = "# mesh in the fitted superquadric's shape frame [m], written by supermodal fit\n";
+    if (!mtllib.empty())
+        out += "mtllib " + mtllib + "\n";
     char line[128];
     for (const Vec3& p : mesh.positions) {
         const Vec3 q = inv_rotate(f.orientation, p - f.position);
         std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", q.x, q.y, q.z);
         out += line;
     }
-    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-        std::snprintf(line, sizeof line, "f %u %u %u\n", mesh.indices[i] + 1, mesh.indices[i + 1] + 1,
-                      mesh.indices[i + 2] + 1);
+    const bool uv = !look.texcoords.empty();
+    for (size_t i = 0; uv && i + 1 < look.texcoords.size(); i += 2) {
+        std::snprintf(line, sizeof line, "vt %.9g %.9g\n", look.texcoords[i], look.texcoords[i + 1]);
         out += line;
+    }
+    const size_t groups = std::max<size_t>(1, look.materials.size());
+    for (size_t m = 0; m < groups; ++m) {
+        if (!look.materials.empty())
+            out += "usemtl " + obj_material_name(look, m) + "\n";
+        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            if (!look.triangle_materials.empty() && look.triangle_materials[i / 3] != m)
+                continue;
+            const uint32_t a = mesh.indices[i] + 1, b = mesh.indices[i + 1] + 1, c = mesh.indices[i + 2] + 1;
+            if (uv)
+                std::snprintf(line, sizeof line, "f %u/%u %u/%u %u/%u\n", a, a, b, b, c, c);
+            else
+                std::snprintf(line, sizeof line, "f %u %u %u\n", a, b, c);
+            out += line;
+        }
     }
     return out;
 }
@@ -96,16 +155,33 @@ FitTally tally_fits(const std::vector<FitResult>& fits, const std::string& stem,
     return t;
 }
 
-/// --attach: writes the mesh in the fitted body's frame next to the scene and names it as the body's
-/// render mesh. Written first: the scene names it, so a scene on disk never points at a missing mesh.
-/// An error message, or empty.
-std::string attach_mesh(const FitOptions& o, const std::string& stem, const TriangleMesh& mesh,
+/// --attach: writes the mesh in the fitted body's frame next to the scene, with its texture coordinates
+/// and materials (an MTL beside it), and names it as the body's render mesh. Written first: the scene
+/// names it, so a scene on disk never points at a missing mesh. An error message, or empty.
+std::string attach_mesh(const FitOptions& o, const ImportDef& import_def, const std::string& stem,
                         const FitResult& fit, nlohmann::json& body)
 {
+    // Read again with the look: welding then keeps UV seams apart, which the fit does not need.
+    ImportDef def = import_def;
+    def.keep_look = true;
+    const Result<ImportedMesh> mesh = import_mesh(o.mesh, def);
+    if (!mesh)
+        return mesh.error().message();
     const std::filesystem::path scene_path(o.scene_out);
-    const std::string file = scene_path.stem().string() + "_" + stem + ".obj";
-    const std::string path = (scene_path.parent_path() / file).string();
-    if (std::string e = write_file_atomically(path, mesh_in_body_frame_obj(mesh, fit)); !e.empty())
+    const std::filesystem::path folder = scene_path.parent_path();
+    const std::string base = scene_path.stem().string() + "_" + stem;
+    std::string mtllib;
+    if (!mesh->look.materials.empty()) {
+        mtllib = base + ".mtl";
+        const std::filesystem::path dir = folder.empty() ? std::filesystem::path(".") : folder;
+        if (std::string e = write_file_atomically((folder / mtllib).string(), materials_mtl(mesh->look, dir));
+            !e.empty())
+            return e;
+    }
+    const std::string file = base + ".obj";
+    if (std::string e = write_file_atomically((folder / file).string(),
+                                              mesh_in_body_frame_obj(mesh->mesh, mesh->look, mtllib, fit));
+        !e.empty())
         return e;
     body["mesh"] = file;
     return {};
@@ -167,7 +243,8 @@ CLI::App* add_fit_command(CLI::App& app, FitOptions& o)
     cmd->add_option("--name", o.name, "Body name (default: the file name without extension)");
     cmd->add_flag("--attach", o.attach,
                   "With --scene and one part: also write the mesh in the fitted body's frame as "
-                  "SCENE_STEM_NAME.obj next to the scene and name it as the body's render \"mesh\"");
+                  "SCENE_STEM_NAME.obj (with its texture coordinates, and its materials in "
+                  "SCENE_STEM_NAME.mtl) next to the scene and name it as the body's render \"mesh\"");
     return cmd;
 }
 
@@ -197,7 +274,7 @@ int fit_command(const FitOptions& o)
     const std::string stem = o.name.empty() ? std::filesystem::path(o.mesh).stem().string() : o.name;
     FitTally tally = tally_fits(*fits, stem, o.mesh);
     if (o.attach)
-        if (const std::string e = attach_mesh(o, stem, mesh->mesh, fits->front(), tally.bodies[0]);
+        if (const std::string e = attach_mesh(o, import_def, stem, fits->front(), tally.bodies[0]);
             !e.empty()) {
             print_error(e);
             return k_exit_internal;

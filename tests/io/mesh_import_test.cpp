@@ -4,6 +4,9 @@
 #include "support/obj_file.h"
 #include "support/shapes.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -12,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace sm = supermodal;
 namespace fs = std::filesystem;
@@ -220,4 +224,103 @@ TEST(MeshImport, KeptMeshFuzzFindingsAreRefusedOrLoadWithoutAborting)
         ++files;
     }
     EXPECT_GE(files, 2);
+}
+
+namespace
+{
+
+const std::string k_crate = std::string(SM_SOURCE_DIR) + "/samples/meshes/crate.obj";
+
+// crate.obj's corners as (x, y, z, u, v), read with a few lines of our own: "v" and "vt" lines are
+// paired by index in that file (every face corner is "i/i").
+std::vector<std::array<double, 5>> crate_corners()
+{
+    std::ifstream in(k_crate);
+    std::vector<std::array<double, 5>> v;
+    std::vector<std::array<double, 2>> t;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream s(line);
+        std::string tag;
+        s >> tag;
+        if (tag == "v") {
+            std::array<double, 5> c{};
+            s >> c[0] >> c[1] >> c[2];
+            v.push_back(c);
+        } else if (tag == "vt") {
+            std::array<double, 2> c{};
+            s >> c[0] >> c[1];
+            t.push_back(c);
+        }
+    }
+    for (size_t i = 0; i < v.size() && i < t.size(); ++i) {
+        v[i][3] = t[i][0];
+        v[i][4] = t[i][1];
+    }
+    return v;
+}
+
+} // namespace
+
+TEST(MeshImport, KeepLookReadsTextureCoordinatesAndMaterials)
+{
+    sm::ImportDef def = sm::default_import_def();
+    def.keep_look = true;
+    const auto got = sm::import_mesh(k_crate, def);
+    ASSERT_TRUE(got) << got.error().message();
+    const sm::MeshLook& look = got->look;
+    const size_t n = got->mesh.positions.size();
+    ASSERT_EQ(look.texcoords.size(), 2 * n);
+    ASSERT_EQ(look.triangle_materials.size() * 3, got->mesh.indices.size());
+    EXPECT_EQ(got->mesh.indices.size(), 576u); // six faces of 4 × 4 quads
+    // Every vertex is one of the file's (position, uv) corners: welding kept the UV seams apart.
+    const std::vector<std::array<double, 5>> corners = crate_corners();
+    for (size_t i = 0; i < n; ++i) {
+        const sm::Vec3 p = got->mesh.positions[i];
+        const bool found = std::any_of(corners.begin(), corners.end(), [&](const std::array<double, 5>& c) {
+            // The file's 6-digit text goes through assimp's floats: 1e-6 m, and UVs of 0 or 1 exactly.
+            return std::abs(c[0] - p.x) < 1e-6 && std::abs(c[1] - p.y) < 1e-6 &&
+                   std::abs(c[2] - p.z) < 1e-6 && c[3] == look.texcoords[2 * i] &&
+                   c[4] == look.texcoords[2 * i + 1];
+        });
+        EXPECT_TRUE(found) << "vertex " << i;
+    }
+    // 98 distinct positions; each face's own UVs need up to 6 × 25 vertices.
+    EXPECT_GT(n, 98u);
+    EXPECT_LE(n, 150u);
+    ASSERT_EQ(look.materials.size(), 2u);
+    size_t wood = 0, paint = 0;
+    for (uint32_t m : look.triangle_materials)
+        (look.materials[m].name == "crate_wood" ? wood : paint) += 1;
+    EXPECT_EQ(wood, 128u); // four sides
+    EXPECT_EQ(paint, 64u);
+    for (const sm::MeshMaterial& m : look.materials) {
+        if (m.name == "crate_wood") {
+            EXPECT_EQ(fs::path(m.base_color_texture).filename(), "crate.png");
+            EXPECT_TRUE(fs::is_regular_file(m.base_color_texture)) << m.base_color_texture;
+        } else {
+            EXPECT_EQ(m.name, "crate_paint");
+            EXPECT_TRUE(m.base_color_texture.empty());
+            EXPECT_NEAR(m.base_color[0], 0.7, 1e-6); // crate.mtl's Kd through floats
+            EXPECT_NEAR(m.base_color[1], 0.12, 1e-6);
+            EXPECT_NEAR(m.base_color[2], 0.1, 1e-6);
+            EXPECT_EQ(m.base_color[3], 1.0);
+        }
+    }
+    // Normals are summed over every triangle at a position, so the two sides of a UV seam agree.
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            if (got->mesh.positions[i] == got->mesh.positions[j]) {
+                EXPECT_EQ(got->mesh.normals[i], got->mesh.normals[j]) << i << ", " << j;
+            }
+}
+
+TEST(MeshImport, WithoutKeepLookTheMeshIsWeldedByPositionAlone)
+{
+    const auto got = sm::import_mesh(k_crate);
+    ASSERT_TRUE(got) << got.error().message();
+    EXPECT_EQ(got->mesh.positions.size(), 98u);
+    EXPECT_TRUE(got->look.texcoords.empty());
+    EXPECT_TRUE(got->look.materials.empty());
+    EXPECT_TRUE(got->look.triangle_materials.empty());
 }

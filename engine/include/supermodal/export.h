@@ -8,6 +8,7 @@
 #include "supermodal/api.h"
 #include "supermodal/geometry.h"
 #include "supermodal/math.h"
+#include "supermodal/mesh_io.h"
 #include "supermodal/result.h"
 
 #include <cstdint>
@@ -45,6 +46,12 @@ struct ExportBody {
     std::vector<Vec3> positions;        ///< Per sample, body_position (shape origin) [m], world.
     std::vector<Quat> orientations;     ///< Per sample, world_from_body, sign kept continuous.
     std::vector<double> amplitudes;     ///< Per sample, r modal amplitudes q [√kg·m] (frame-major).
+    /// The mesh's texture coordinates and materials (an artist's mesh, ExportBodyMesh::look); empty for
+    /// a tessellation. The GLB writes one primitive per material, and TEXCOORD_0 when it has (u, v).
+    MeshLook look;
+    /// Linear RGB in [0, 1]: the GLB material of a body whose look has no materials (a scene's
+    /// bodies take scene_body_colors(), as the renderer draws them).
+    Vec3 base_color{0.8, 0.8, 0.8};
 };
 
 /// A recorded run: sample times and the bodies (world_bodies order, planes left out).
@@ -57,6 +64,8 @@ struct ExportRecording {
 struct ExportBodyMesh {
     std::string body;                         ///< Body name.
     std::shared_ptr<const TriangleMesh> mesh; ///< Vertices [m] in the body's shape frame.
+    /// Its texture coordinates and materials (SceneBody::render_look), or null.
+    std::shared_ptr<const MeshLook> look;
 };
 
 /// Builds the meshes, then steps `world` for def.seconds, sampling at each step nearest k/fps (k = 0 is
@@ -69,7 +78,10 @@ struct ExportBodyMesh {
                                                               std::span<const ExportBodyMesh> meshes = {});
 
 /// The GLB bytes of a recording: one node and mesh per body, one animation "simulation" with LINEAR
-/// translation, rotation and (modal bodies) morph-target weight channels.
+/// translation, rotation and (modal bodies) morph-target weight channels. Materials are glTF
+/// metallic-roughness ones (metallic 0, roughness 1): the look's, with their base colour images
+/// embedded (PNG or JPEG), or one of base_color per body. Errors: inconsistent sizes, a value that
+/// does not fit a float, a texture that cannot be read or is neither PNG nor JPEG.
 [[nodiscard]] SM_API Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& recording);
 /// Writes glb_from_recording() to `path` atomically (temporary file in the same folder, then rename).
 [[nodiscard]] SM_API Status write_glb(const ExportRecording& recording, const std::string& path);

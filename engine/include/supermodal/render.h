@@ -124,11 +124,8 @@ struct CameraRay {
 [[nodiscard]] SM_API std::optional<std::array<double, 2>>
 project_to_pixel(const World& world, const CameraDef& camera, int width, int height, const Vec3& point);
 
-/// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
-/// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1].
-[[nodiscard]] SM_API std::vector<Vec3> scene_body_colors(const Scene& scene);
-/// Gives the renderer the scene's look for the world built from it: scene_body_colors() and each body's
-/// render mesh (SceneBody::render_mesh), matched in world_bodies() order.
+/// Gives the renderer the scene's look for the world built from it: scene_body_colors() (scene.h) and each
+/// body's render mesh (SceneBody::render_mesh), matched in world_bodies() order.
 SM_API void apply_scene_looks(Renderer& renderer, const Scene& scene, const World& world);
 
 // ---- Images ---------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include "supermodal/body.h"
 #include "supermodal/constraint.h"
 #include "supermodal/geometry.h"
+#include "supermodal/mesh_io.h"
 #include "supermodal/result.h"
 #include "supermodal/world.h"
 
@@ -61,6 +62,9 @@ struct SceneBody {
     /// The mesh, read by load_scene/parse_scene through import_mesh (metres, body frame = shape frame),
     /// shared between copies of the scene; null when `mesh` is empty.
     std::shared_ptr<const TriangleMesh> render_mesh;
+    /// The mesh's texture coordinates and materials (per render_mesh vertex and triangle); null when
+    /// `mesh` is empty or the file has neither.
+    std::shared_ptr<const MeshLook> render_look;
 };
 
 /// One constraint of a scene: its def with the bodies named (b empty = the world).
@@ -100,6 +104,11 @@ struct Scene {
 [[nodiscard]] SM_API Result<World> build_world(const Scene& scene);
 
 // ---- Writing scenes (engine/src/scene/writer.cpp) --------------------------------------------------
+
+/// Colours for a scene's bodies in world_bodies() order: one hue per material (wood, steel, ...),
+/// lightened or darkened a little per body so touching parts stay apart; RGB in [0, 1]. The renderer
+/// draws them; the GLB export writes them as base colours.
+[[nodiscard]] SM_API std::vector<Vec3> scene_body_colors(const Scene& scene);
 
 /// Scene JSON, format v1, that parse_scene() reads back to an identical Scene: includes flattened
 /// (materials, bodies and constraints inline, names prefixed), parents kept, every number in its

@@ -3,13 +3,17 @@
 // 12-byte header (magic "glTF", version 2, total length), a JSON chunk padded with spaces and a BIN
 // chunk padded with zeros, each to 4 bytes. One bufferView per accessor, 4-byte aligned, tightly
 // packed (so no byteStride); vertex data targets ARRAY_BUFFER, indices ELEMENT_ARRAY_BUFFER, animation
-// data no target (the specification forbids a target there).
+// data no target (the specification forbids a target there). Materials are metallic-roughness ones;
+// base colour images go into the BIN chunk with their MIME type.
 #include "io/atomic_file.h"
 #include "supermodal/export.h"
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 
 namespace supermodal
@@ -65,6 +69,9 @@ class GlbBuilder
         return static_cast<int>(accessors.size()) - 1;
     }
 
+    /// An image's bytes as a bufferView (no target, as the specification wants for images).
+    int add_image_view(const std::vector<uint8_t>& bytes) { return add_view(bytes.data(), bytes.size(), 0); }
+
   private:
     int add_view(const void* data, size_t bytes, int target)
     {
@@ -108,6 +115,28 @@ bool all_fit(const std::vector<Vec3>& v)
     return true;
 }
 
+Status check_look(const ExportBody& b)
+{
+    const MeshLook& look = b.look;
+    const std::string where = "body " + b.name;
+    if (!look.texcoords.empty() && look.texcoords.size() != 2 * b.mesh.positions.size())
+        return Error{"", where, "expected 2 texture coordinates per vertex"};
+    if (look.materials.empty() != look.triangle_materials.empty() ||
+        (!look.materials.empty() && look.triangle_materials.size() * 3 != b.mesh.indices.size()))
+        return Error{"", where, "expected a material index per triangle, and materials for them"};
+    for (uint32_t m : look.triangle_materials)
+        if (m >= look.materials.size())
+            return Error{"", where, "material index " + std::to_string(m) + " past the materials"};
+    for (double c : {b.base_color.x, b.base_color.y, b.base_color.z})
+        if (!(c >= 0.0 && c <= 1.0))
+            return Error{"", where, "expected base_color values in [0, 1]"};
+    for (const MeshMaterial& m : look.materials)
+        for (double c : m.base_color)
+            if (!(c >= 0.0 && c <= 1.0))
+                return Error{"", where + " material " + m.name, "expected base colour values in [0, 1]"};
+    return {};
+}
+
 Status check(const ExportRecording& rec)
 {
     const size_t frames = rec.times.size();
@@ -137,38 +166,144 @@ Status check(const ExportRecording& rec)
             ok = ok && fits(q.w) && fits(q.x) && fits(q.y) && fits(q.z);
         for (double a : b.amplitudes)
             ok = ok && fits(a);
-        if (!ok)
+        for (double t : b.look.texcoords)
+            ok = ok && fits(t);
+        if (!ok || !fits(b.base_color))
             return Error{"", "body " + b.name,
                          "a value is not finite or does not fit a 32-bit float (|x| > 3.4e38)"};
+        if (Status s = check_look(b); !s)
+            return s;
     }
     return {};
 }
 
-// The body's mesh: one triangle primitive, with a morph target per mode (named after its frequency).
-json body_mesh(GlbBuilder& g, const ExportBody& b)
+// The glTF materials, images and textures; each image file is embedded once.
+struct Materials {
+    json materials = json::array(), images = json::array(), textures = json::array();
+    std::map<std::string, int> texture_of; // image path → texture index
+};
+
+// The texture of image file `path`, embedded on first use.
+Result<int> texture(GlbBuilder& g, Materials& m, const std::string& path)
+{
+    if (const auto it = m.texture_of.find(path); it != m.texture_of.end())
+        return it->second;
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return Error{"", "texture " + path, "cannot open the image"};
+    const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    // glTF allows PNG and JPEG; tell them by their signatures, not the file name.
+    const bool png =
+        bytes.size() > 8 && bytes[0] == 0x89 && bytes[1] == 'P' && bytes[2] == 'N' && bytes[3] == 'G';
+    const bool jpeg = bytes.size() > 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+    if (!png && !jpeg)
+        return Error{"", "texture " + path, "expected a PNG or JPEG image"};
+    m.images.push_back(
+        {{"bufferView", g.add_image_view(bytes)}, {"mimeType", png ? "image/png" : "image/jpeg"}});
+    m.textures.push_back({{"source", m.images.size() - 1}});
+    return m.texture_of[path] = static_cast<int>(m.textures.size()) - 1;
+}
+
+json material(const std::string& name, const std::array<double, 4>& rgba, int tex)
+{
+    json pbr = {{"baseColorFactor", rgba}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}};
+    if (tex >= 0)
+        pbr["baseColorTexture"] = {{"index", tex}};
+    json out = {{"name", name}, {"pbrMetallicRoughness", std::move(pbr)}};
+    if (rgba[3] < 1.0)
+        out["alphaMode"] = "BLEND";
+    return out;
+}
+
+// The body's materials as glTF material indices: the look's (textures only with texture coordinates,
+// which they need), or one of its base colour.
+Result<std::vector<int>> body_materials(GlbBuilder& g, Materials& m, const ExportBody& b)
+{
+    std::vector<int> out;
+    if (b.look.materials.empty()) {
+        m.materials.push_back(material(b.name, {b.base_color.x, b.base_color.y, b.base_color.z, 1.0}, -1));
+        out.push_back(static_cast<int>(m.materials.size()) - 1);
+        return out;
+    }
+    for (const MeshMaterial& mat : b.look.materials) {
+        int tex = -1;
+        if (!mat.base_color_texture.empty() && !b.look.texcoords.empty()) {
+            Result<int> t = texture(g, m, mat.base_color_texture);
+            if (!t)
+                return Error{"", "body " + b.name + " material " + mat.name + " " + t.error().where,
+                             t.error().what};
+            tex = *t;
+        }
+        m.materials.push_back(material(mat.name, mat.base_color, tex));
+        out.push_back(static_cast<int>(m.materials.size()) - 1);
+    }
+    return out;
+}
+
+// (u, v) per vertex with glTF's v, which runs down the image.
+std::vector<float> gltf_texcoords(const std::vector<double>& uv)
+{
+    std::vector<float> out(uv.size());
+    for (size_t i = 0; i + 1 < uv.size(); i += 2) {
+        out[i] = static_cast<float>(uv[i]);
+        out[i + 1] = static_cast<float>(1.0 - uv[i + 1]);
+    }
+    return out;
+}
+
+// The body's triangles split by material: one index list per entry of `materials`.
+std::vector<std::vector<uint32_t>> indices_by_material(const ExportBody& b, size_t materials)
+{
+    std::vector<std::vector<uint32_t>> out(materials);
+    if (b.look.triangle_materials.empty()) {
+        out[0] = b.mesh.indices;
+        return out;
+    }
+    for (size_t t = 0; t < b.look.triangle_materials.size(); ++t) {
+        std::vector<uint32_t>& dst = out[b.look.triangle_materials[t]];
+        dst.insert(dst.end(), b.mesh.indices.begin() + static_cast<long>(3 * t),
+                   b.mesh.indices.begin() + static_cast<long>(3 * t + 3));
+    }
+    return out;
+}
+
+// The body's mesh: a triangle primitive per material used, sharing the vertex accessors, with a morph
+// target per mode (named after its frequency).
+json body_mesh(GlbBuilder& g, const ExportBody& b, const std::vector<int>& materials)
 {
     const size_t r = b.mode_displacements.size();
-    json prim = {{"attributes",
-                  {{"POSITION", g.add_floats(flatten(b.mesh.positions), 3, "VEC3", k_array_buffer)},
-                   {"NORMAL", g.add_floats(flatten(b.mesh.normals), 3, "VEC3", k_array_buffer)}}},
-                 {"indices", g.add_indices(b.mesh.indices)},
-                 {"mode", k_triangles}};
+    json attributes = {{"POSITION", g.add_floats(flatten(b.mesh.positions), 3, "VEC3", k_array_buffer)},
+                       {"NORMAL", g.add_floats(flatten(b.mesh.normals), 3, "VEC3", k_array_buffer)}};
+    if (!b.look.texcoords.empty())
+        attributes["TEXCOORD_0"] = g.add_floats(gltf_texcoords(b.look.texcoords), 2, "VEC2", k_array_buffer);
+    json targets = json::array(), names = json::array();
+    for (size_t k = 0; k < r; ++k) {
+        targets.push_back(
+            {{"POSITION", g.add_floats(flatten(b.mode_displacements[k]), 3, "VEC3", k_array_buffer)}});
+        char name[64];
+        std::snprintf(name, sizeof name, "mode_%zu_%.4gHz", k,
+                      k < b.frequencies_hz.size() ? b.frequencies_hz[k] : 0.0);
+        names.push_back(name);
+    }
+    json primitives = json::array();
+    const std::vector<std::vector<uint32_t>> parts = indices_by_material(b, materials.size());
+    for (size_t m = 0; m < parts.size(); ++m) {
+        if (parts[m].empty())
+            continue;
+        json prim = {{"attributes", attributes},
+                     {"indices", g.add_indices(parts[m])},
+                     {"material", materials[m]},
+                     {"mode", k_triangles}};
+        if (r > 0)
+            prim["targets"] = targets;
+        primitives.push_back(std::move(prim));
+    }
     json mesh = {{"name", b.name}};
     if (r > 0) {
-        json targets = json::array(), names = json::array();
-        for (size_t k = 0; k < r; ++k) {
-            targets.push_back(
-                {{"POSITION", g.add_floats(flatten(b.mode_displacements[k]), 3, "VEC3", k_array_buffer)}});
-            char name[64];
-            std::snprintf(name, sizeof name, "mode_%zu_%.4gHz", k,
-                          k < b.frequencies_hz.size() ? b.frequencies_hz[k] : 0.0);
-            names.push_back(name);
-        }
-        prim["targets"] = std::move(targets);
         mesh["weights"] = std::vector<double>(r, 0.0);
         mesh["extras"] = {{"targetNames", std::move(names)}}; // the de-facto convention for names
     }
-    mesh["primitives"] = json::array({std::move(prim)});
+    mesh["primitives"] = std::move(primitives);
     return mesh;
 }
 
@@ -245,14 +380,18 @@ Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& rec)
     Animation anim;
     std::vector<float> times(rec.times.begin(), rec.times.end());
     anim.time_acc = g.add_floats(times, 1, "SCALAR", 0);
+    Materials materials;
     for (size_t bi = 0; bi < rec.bodies.size(); ++bi) {
-        meshes.push_back(body_mesh(g, rec.bodies[bi]));
+        Result<std::vector<int>> mats = body_materials(g, materials, rec.bodies[bi]);
+        if (!mats)
+            return mats.error();
+        meshes.push_back(body_mesh(g, rec.bodies[bi], *mats));
         nodes.push_back(body_node(g, rec.bodies[bi], bi, anim));
     }
     json root_nodes = json::array();
     for (size_t i = 0; i < nodes.size(); ++i)
         root_nodes.push_back(i);
-    const json doc = {
+    json doc = {
         {"asset", {{"version", "2.0"}, {"generator", "supermodal export"}}},
         {"scene", 0},
         {"scenes", json::array({{{"nodes", root_nodes}}})},
@@ -263,7 +402,12 @@ Result<std::vector<uint8_t>> glb_from_recording(const ExportRecording& rec)
         {"buffers", json::array({{{"byteLength", g.bin.size()}}})},
         {"bufferViews", g.views},
         {"accessors", g.accessors},
+        {"materials", materials.materials},
     };
+    if (!materials.images.empty()) {
+        doc["images"] = materials.images;
+        doc["textures"] = materials.textures;
+    }
     // Body names come from the user: replace invalid UTF-8 rather than throw.
     return glb_container(doc.dump(-1, ' ', false, json::error_handler_t::replace), std::move(g.bin));
 }

@@ -137,6 +137,8 @@ Result<ExportRecording> record_animation(World& world, const ExportDef& def,
         const auto given = std::find_if(meshes.begin(), meshes.end(),
                                         [&](const ExportBodyMesh& m) { return m.body == out.name; });
         out.mesh = given != meshes.end() ? *given->mesh : tessellate(shape, def.tessellation);
+        if (given != meshes.end() && given->look)
+            out.look = *given->look;
         if (const ModalBasis* basis = body_modal_basis(world, b); basis != nullptr && def.morph_targets) {
             out.mode_displacements = mode_displacements(*basis, out.mesh);
             out.frequencies_hz = basis->frequencies_hz;

@@ -101,7 +101,66 @@ struct Gather {
     TriangleMesh mesh;
     int instances = 0;
     bool finite = true;
+    bool look = false;              // ImportDef::keep_look
+    std::filesystem::path folder;   // the mesh file's, for texture paths
+    MeshLook looks;                 // texcoords, materials, triangle_materials
+    bool any_texcoords = false;     // texcoords are kept only when some mesh has them
+    std::vector<int> material_slot; // assimp material index → looks.materials index, or −1
 };
+
+/// The look's index of assimp material `m`, added on first use; −1 for assimp's stand-in material
+/// (a file that names none), so such a mesh takes its colour from elsewhere.
+int material_slot(const aiScene& scene, unsigned m, Gather& out)
+{
+    if (m >= scene.mNumMaterials)
+        return -1;
+    out.material_slot.resize(scene.mNumMaterials, -2); // −2: not looked at yet
+    if (out.material_slot[m] != -2)
+        return out.material_slot[m];
+    const aiMaterial& src = *scene.mMaterials[m];
+    aiString name;
+    src.Get(AI_MATKEY_NAME, name);
+    if (std::string(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME)
+        return out.material_slot[m] = -1;
+    MeshMaterial mat;
+    mat.name = name.C_Str();
+    aiColor4D c(1, 1, 1, 1);
+    if (src.Get(AI_MATKEY_BASE_COLOR, c) != AI_SUCCESS) {
+        aiColor3D d(1, 1, 1);
+        src.Get(AI_MATKEY_COLOR_DIFFUSE, d);
+        float opacity = 1.0f;
+        src.Get(AI_MATKEY_OPACITY, opacity);
+        c = aiColor4D(d.r, d.g, d.b, opacity);
+    }
+    mat.base_color = {c.r, c.g, c.b, c.a};
+    for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
+        aiString file;
+        if (src.GetTextureCount(type) == 0 || src.GetTexture(type, 0, &file) != AI_SUCCESS)
+            continue;
+        if (file.length > 0 && file.C_Str()[0] != '*') // "*N": embedded in the file, not read
+            mat.base_color_texture = (out.folder / file.C_Str()).lexically_normal().string();
+        break;
+    }
+    out.looks.materials.push_back(std::move(mat));
+    return out.material_slot[m] = static_cast<int>(out.looks.materials.size()) - 1;
+}
+
+/// The look of one mesh instance: its (u, v) per vertex and its material per triangle.
+void gather_look(const aiScene& scene, const aiMesh& mesh, Gather& out)
+{
+    const aiVector3D* uv = mesh.mTextureCoords[0];
+    out.any_texcoords = out.any_texcoords || uv != nullptr;
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+        out.looks.texcoords.insert(out.looks.texcoords.end(),
+                                   {uv ? double(uv[v].x) : 0.0, uv ? double(uv[v].y) : 0.0});
+    const int slot = material_slot(scene, mesh.mMaterialIndex, out);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices == 3 && face.mIndices[0] < mesh.mNumVertices &&
+            face.mIndices[1] < mesh.mNumVertices && face.mIndices[2] < mesh.mNumVertices)
+            out.looks.triangle_materials.push_back(slot < 0 ? UINT32_MAX : uint32_t(slot));
+    }
+}
 
 /// Appends every mesh of node and its children with the accumulated node transform.
 void gather(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, Gather& out)
@@ -132,6 +191,8 @@ void gather(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
             out.mesh.indices.insert(out.mesh.indices.end(),
                                     {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
         }
+        if (out.look)
+            gather_look(scene, mesh, out);
         ++out.instances;
     }
     for (unsigned c = 0; c < node.mNumChildren; ++c)
@@ -267,6 +328,27 @@ Result<const aiScene*> read_scene(Assimp::Importer& importer, const std::string&
     return scene;
 }
 
+// Texture coordinates only when some mesh had them; materials only when every triangle has one (a
+// mesh with assimp's stand-in material among named ones takes a plain white one).
+void finish_look(Gather& g)
+{
+    if (!g.any_texcoords)
+        g.looks.texcoords.clear();
+    if (g.looks.materials.empty()) {
+        g.looks.triangle_materials.clear();
+        return;
+    }
+    uint32_t white = UINT32_MAX;
+    for (uint32_t& m : g.looks.triangle_materials)
+        if (m == UINT32_MAX) {
+            if (white == UINT32_MAX) {
+                g.looks.materials.push_back({"default", {1.0, 1.0, 1.0, 1.0}, ""});
+                white = static_cast<uint32_t>(g.looks.materials.size()) - 1;
+            }
+            m = white;
+        }
+}
+
 // The gathered triangles in metres, Y up, welded when asked for.
 Result<ImportedMesh> to_metres_y_up(const std::string& path, const ImportDef& def, const aiScene& scene,
                                     const std::string& ext, Gather& g)
@@ -288,7 +370,10 @@ Result<ImportedMesh> to_metres_y_up(const std::string& path, const ImportDef& de
         p = r * p * out.scale;
     for (Vec3& n : g.mesh.normals)
         n = r * n;
-    out.mesh = def.weld_vertices ? weld_mesh(g.mesh) : std::move(g.mesh);
+    if (g.look)
+        finish_look(g);
+    out.mesh = def.weld_vertices ? weld_mesh(g.mesh, g.look ? &g.looks : nullptr) : std::move(g.mesh);
+    out.look = std::move(g.looks);
     if (out.mesh.indices.empty())
         return fail(path, "no triangles with three distinct vertices");
     return out;
@@ -311,6 +396,8 @@ Result<ImportedMesh> import_mesh(const std::string& path, const ImportDef& def)
     if (!scene)
         return scene.error();
     Gather g;
+    g.look = def.keep_look;
+    g.folder = std::filesystem::path(path).parent_path();
     gather(**scene, *(*scene)->mRootNode, aiMatrix4x4(), g);
     if (!g.finite)
         return fail(path, "a vertex coordinate is not finite (NaN or Inf)");

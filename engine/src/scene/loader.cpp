@@ -369,10 +369,19 @@ void load_render_meshes(Reader& r, const std::filesystem::path& base_dir, size_t
         if (std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec) &&
             !std::filesystem::is_regular_file(path, ec))
             return r.fail(where, path + ": not a regular file");
-        Result<ImportedMesh> m = import_mesh(path);
+        ImportDef def = default_import_def();
+        def.keep_look = true;
+        Result<ImportedMesh> m = import_mesh(path, def);
         if (!m)
             return r.fail(where, m.error().message());
+        for (const MeshMaterial& mat : m->look.materials)
+            if (!mat.base_color_texture.empty() &&
+                !std::filesystem::is_regular_file(mat.base_color_texture, ec))
+                return r.fail(where, path + ": material \"" + mat.name + "\": texture " +
+                                         mat.base_color_texture + " not found");
         b.render_mesh = std::make_shared<const TriangleMesh>(std::move(m->mesh));
+        if (!m->look.texcoords.empty() || !m->look.materials.empty())
+            b.render_look = std::make_shared<const MeshLook>(std::move(m->look));
     }
 }
 
