@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue #5 broadphase: sort-and-sweep over N boxes of 0.1 m on a jittered 0.2 m grid (the pile's
+// Broadphase: sort-and-sweep over N boxes of 0.1 m on a jittered 0.2 m grid (the pile's
 // density, about one neighbour overlap per box), N = 10^3 … 10^5. "Warm": the boxes moved a little
 // since the last call, as between steps (the scratch order is almost sorted); "cold": a fresh scratch.
 #include "contact/broadphase.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cost of animation export (issue #10 item 4) on the ball-on-board scene (modal board, steel ball, two
+// Cost of animation export (docs/pipeline.md) on the ball-on-board scene (modal board, steel ball, two
 // supports): recording 1 s at 30 samples per second against the bare run, building the GLB in memory
 // (counter: bytes), writing it (temp file + fsync + rename) and writing the OBJ sequence. Arguments:
 // the board's mode count and the tessellation.

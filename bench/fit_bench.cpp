@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cost of superquadric fitting (issue #10): one fit of a tessellated, randomly posed superquadric per
+// Cost of superquadric fitting (docs/pipeline.md): one fit of a tessellated, randomly posed superquadric per
 // iteration, plain and with taper/bend, by mesh resolution; and mesh import of an OBJ. The accuracy each
 // fit reached is reported as counters (radius and ε errors, rms relative to size).
 #include "../tests/fit/fit_cases.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The modal trade (issue #6 item 6, docs/modal.md "Full model and the modal trade"): cost per step of
+// The modal trade (docs/modal.md "Full model and the modal trade"): cost per step of
 // the full lattice (Newmark, sparse LDLᵀ) against the modal step with r modes, and the modal
 // displacement error against the full model, for the 2x4 board and a soft ellipsoid struck by a
 // half-sine load pulse, each at two lattice resolutions.

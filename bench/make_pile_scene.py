@@ -67,7 +67,7 @@ if soft:
                                      "restitution": 0.3, "damping_ratio": 0.05}}}
 else:
     head = {"$schema": SCHEMA,
-            "comment": f"Issue #5 pile protocol, {n} ellipsoids falling into an open box; written by "
+            "comment": f"Pile protocol (docs/contact.md), {n} ellipsoids falling into an open box; written by "
                        "bench/make_pile_scene.py.",
             "settings": {"dt": 1.0 / 240.0, "duration": 3.0},
             "materials": {"plastic": {"density": 1000, "friction": 0.5}}}

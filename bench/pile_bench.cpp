@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue #5 pile: N bodies (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an
+// Pile: N bodies (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an
 // open box, dt = 1/240 s, 720 steps, μ = 0.5. Reported over the last 240 steps: ms per step (the
 // benchmark's manual time, per step, and the process CPU time per step), the deepest penetration, the
 // contacts at the end, the support-map evaluations per touching pair and substep (the candidate pairs'

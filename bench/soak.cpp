@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Soak run (issue #11): steps a scene for a long simulated time and prints one CSV row per report
+// Soak run (docs/reliability.md): steps a scene for a long simulated time and prints one CSV row per report
 // interval: simulated time, wall time, step time over the interval (mean and max wall, mean CPU),
 // resident memory, and whether every body is still finite. Not a test: scripts/soak.sh runs it and
 // plots the rows; growth in memory or step time over the hour is what it looks for.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Stability map at the extremes (issue #9, item 2): sweeps 2-D slices of the grid ε × aspect ×
+// Stability map at the extremes (docs/stability.md): sweeps 2-D slices of the grid ε × aspect ×
 // mass ratio × dt/limit × penalty frequency × impact speed (and a modal slice) and prints one CSV row
 // per cell (tests/stability/stability_cells.h says what each scene is and what is measured). Not a
 // Google Benchmark: bench/stability_report.py turns the CSV into heat maps and docs/stability.md tables.

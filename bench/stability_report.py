@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Heat maps and markdown tables of the stability map (issue #9, docs/stability.md).
+"""Heat maps and markdown tables of the stability map (docs/stability.md).
 
 Usage: stability_report.py MAP.csv OUT_DIR > tables.md
 Reads bench/stability_map's CSV; for each slice writes OUT_DIR/<slice>.png (two panels: energy gain and

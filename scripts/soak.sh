@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak (issue #11): runs the chair scene and the pile for an hour of simulated time each (Release),
+# Soak (docs/reliability.md): runs the chair scene and the pile for an hour of simulated time each (Release),
 # one CSV row per simulated minute, and plots resident memory and step time against simulated time
 # into docs/soak/. Not part of CI (hours of wall time); results are recorded in docs/reliability.md.
 # Usage: scripts/soak.sh [SIMULATED_SECONDS] [REPORT_EVERY_SECONDS]   (default 3600 60)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stability map (issue #9, item 2): builds bench/stability_map (Release), sweeps every slice into
+# Stability map (docs/stability.md): builds bench/stability_map (Release), sweeps every slice into
 # docs/stability/stability_map.csv and draws the heat maps next to it (bench/stability_report.py, gnuplot);
 # the markdown tables go to docs/stability/tables.md. About 30 s of CPU. Results: docs/stability.md.
 # Usage: scripts/stability.sh [SLICE...]   (default: all slices)

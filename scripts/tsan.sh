@@ -2,7 +2,7 @@
 # Builds the engine and the threaded tests (the contact thread pool's hash, partition and event tests,
 # the constraint islands, the chair and pile samples on 1 and 2 threads) with ThreadSanitizer in
 # build-tsan/ and runs them.
-# Called by .ci/run after scripts/sanitize.sh (issue #11: determinism across threads).
+# Called by .ci/run after scripts/sanitize.sh (determinism across threads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

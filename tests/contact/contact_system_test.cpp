@@ -50,7 +50,8 @@ class ContactRest : public ::testing::TestWithParam<RestCase>
 
 TEST_P(ContactRest, BodyRestsOnPlaneForTenSeconds)
 {
-    // Issue #5: penetration ≤ 1% of the smallest radius, drift ≤ 1e-4 m, speed ≤ 1e-3 m/s after 10 s.
+    // Resting criteria (docs/contact.md): penetration ≤ 1% of the smallest radius, drift ≤ 1e-4 m,
+    // speed ≤ 1e-3 m/s after 10 s.
     // At the default contact frequency (1/(10 h) = 50 Hz) the static sink is g/ω² ≈ 0.1 mm.
     const RestCase c = GetParam();
     sm::World w = make_world(0.002, c.path);
@@ -95,8 +96,9 @@ TEST(Contact, ConcaveStarSettlesOnPlane)
 
 TEST(Contact, BlockOnInclineAboveFrictionAngleSlidesAtCoulombRate)
 {
-    // tan θ = 0.7 > μ = 0.3: a = g (sin θ − μ cos θ) along the slope; within 2% (issue #5), measured by
-    // a least-squares fit of the displacement over 1 s after the block has settled into sliding.
+    // tan θ = 0.7 > μ = 0.3: a = g (sin θ − μ cos θ) along the slope; within 2% (the accuracy docs/contact.md
+    // claims for sliding), measured by a least-squares fit of the displacement over 1 s after the block has
+    // settled into sliding.
     const double theta = std::atan(0.7), mu = 0.3;
     sm::World w = make_world();
     add_plane(w, {-std::sin(theta), std::cos(theta), 0}, 0.0, mu);
@@ -135,7 +137,8 @@ TEST(Contact, BlockOnInclineAboveFrictionAngleSlidesAtCoulombRate)
 
 TEST(Contact, SphereRollsAtFiveSeventhsGSinTheta)
 {
-    // Rolling without slipping (μ = 0.5 > (2/7) tan θ): a = (5/7) g sin θ, within 2% (issue #5).
+    // Rolling without slipping (μ = 0.5 > (2/7) tan θ): a = (5/7) g sin θ, within 2% (the accuracy
+    // docs/contact.md claims for rolling).
     const double theta = 0.3;
     sm::World w = make_world();
     add_plane(w, {-std::sin(theta), std::cos(theta), 0}, 0.0, 0.5);
@@ -252,10 +255,10 @@ TEST(Contact, BlockOnInclineBelowFrictionAngleStaysPut)
 TEST(Contact, BounceHeightIsRestitutionSquaredTimesDropHeight)
 {
     // ζ is chosen so the no-pull spring–dashpot returns exactly e in continuous time; the discrete step
-    // leaves the rest: within 5% of e² h (issue #5). Sampling path: at ω·h = 0.63 the discrete
+    // leaves the rest, within 5% of e² h. Sampling path: at ω·h = 0.63 the discrete
     // restitution depends on where in a step the contact starts (a 1-D model of the explicit step gives
     // e from 0.44 to 0.60 for e = 0.5); with the support map's single exact point this drop measured
-    // 1.32 e² h, and other drop heights scatter both paths (docs/contact.md, known problems).
+    // 1.32 e² h, and other drop heights scatter both paths (docs/contact.md, Limits).
     const double e = 0.5, h = 0.5, r = 0.05;
     sm::World w = make_world(0.0005, sm::ContactPath::Sampling);
     add_plane(w, {0, 1, 0});

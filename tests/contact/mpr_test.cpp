@@ -116,7 +116,7 @@ TEST(Mpr, OrdinaryQueriesStayFarInsideTheSupportBudget)
 
 TEST(Mpr, AHugeBodyBesideASmallOneIsRefusedAtOnce)
 {
-    // The fuzzer's hang (session 6): a 1e60 m long ellipsoid among 6 cm ones. libccd's portal refinement
+    // A hang the scene fuzzer found: a 1e60 m long ellipsoid among 6 cm ones. libccd's portal refinement
     // has no iteration cap and rounding at that scale never meets its tolerance. First ended by the
     // support budget; now refused before libccd runs (no double resolves 3 cm on 1e60 m).
     const sm::Collider huge = collider({0.06, 0.04, 1e60}, 1.0), small = collider({0.06, 0.04, 0.03}, 1.0);

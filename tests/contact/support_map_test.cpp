@@ -57,7 +57,7 @@ double resting_height(sm::ContactPath path)
 
 TEST(SupportMap, RoundedBoxRestsOnPlane)
 {
-    // Issue #5's resting criteria on the forced support-map path: penetration ≤ 1% of the smallest
+    // The resting criteria (docs/contact.md) on the forced support-map path: penetration ≤ 1% of the smallest
     // radius, drift ≤ 1e-4 m, speed ≤ 1e-3 m/s after 10 s.
     sm::World w = make_world(sm::ContactPath::SupportMap);
     add_floor(w);
@@ -93,7 +93,7 @@ TEST(SupportMap, ForcedPathsGiveSimilarRestingHeights)
 
 TEST(SupportMap, StackOfTenRoundedBoxesStandsTenSeconds)
 {
-    // Issue #5: ten rounded boxes (half 0.1 m, ε = 0.3) stacked face on face stand for 10 s, started
+    // Ten rounded boxes (half 0.1 m, ε = 0.3) stacked face on face stand for 10 s, started
     // with up to 1 mm of sideways jitter and a small twist so that any sway can grow. Standing: every
     // box stays over the one below (horizontal drift ≤ 1 mm, a hundredth of the half-size; a falling
     // box moves by its half-size), no box more than 5 mm below its stacked height (the penalty sinks

@@ -33,7 +33,7 @@ sm::BodyDef ellipsoid_123(sm::Vec3 angular_velocity)
 
 TEST(Rotation, FreeSpinConservesEnergyAndMomentum)
 {
-    // Issue #3 asks for 1e-6 relative over 10 s at dt = 1 ms. The implicit midpoint rule conserves both
+    // The bound docs/dynamics.md states: 1e-6 relative over 10 s at dt = 1 ms. The implicit midpoint rule conserves both
     // invariants up to its Newton tolerance (1e-14 relative per step), so the bound has a 1e6 margin.
     constexpr double k_rel = 1e-6;
     sm::World world = spin_world(0.001);

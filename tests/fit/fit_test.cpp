@@ -23,7 +23,7 @@ std::string sci(double x)
     return buf;
 }
 
-// Tolerances asked by issue #10: radii to 1 % (relative), ε to 0.02 (absolute). The mesh vertices lie
+// The fit accuracy docs/pipeline.md states: radii to 1 % (relative), ε to 0.02 (absolute). The mesh vertices lie
 // exactly on the surface, so the residual vanishes at the truth and the solver's stopping rule
 // (relative cost decrease < 1e-12) leaves far less than this; the tolerance guards the basin, i.e. that
 // the right minimum was found. Taper to 0.02 and bend curvature to 2 % are stated in the same spirit.

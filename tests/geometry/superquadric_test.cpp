@@ -19,7 +19,7 @@ constexpr double k_pi = std::numbers::pi;
 
 using supermodal::test::superquadric;
 
-// The extremes DESIGN.md names: ε from 0.01 (box) through 2 (octahedron) to 4 (concave star).
+// The extremes the engine supports (docs/geometry.md): ε from 0.01 (box) through 2 (octahedron) to 4 (concave star).
 constexpr std::array<double, 8> k_extreme_eps = {0.01, 0.1, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
 // Aspect ratios up to 1:1000 along every axis.
 const std::array<sm::Vec3, 5> k_extreme_radii = {sm::Vec3{1, 1, 1}, sm::Vec3{1, 1, 1000},

@@ -1,4 +1,4 @@
-// Embedded render meshes (issue #10 item 3): a scene body's "mesh" file is read with the scene
+// Render meshes (docs/pipeline.md): a scene body's "mesh" file is read with the scene
 // (engine/src/scene/loader.cpp), exported instead of the tessellation, and deformed through the body's
 // modal field (engine/src/io/gltf_export_record.cpp). References: import_mesh, modal_displacement and
 // body_deformed_point of the public API.

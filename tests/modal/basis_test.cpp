@@ -56,7 +56,7 @@ const modal::BeamSection k_edge = test::board_section(test::k_board_width);
 TEST(ModalBasis, BoardBendingWithinThreePercentOfEulerBernoulli)
 {
     // 16 × 1 × 1 twenty-node cells (600 dofs). Euler–Bernoulli ignores shear and rotary inertia, so the
-    // solid sits below it: −0.4% flatwise, −2.6% edgewise (L/h ≈ 11; DESIGN.md §4). Timoshenko
+    // solid sits below it: −0.4% flatwise, −2.6% edgewise (L/h ≈ 11; docs/modal.md). Timoshenko
     // (κ = 10(1+ν)/(12+11ν)) is the tight bound: measured +0.10% flatwise, +0.18% edgewise.
     const sm::ModalBasis b = build_or_die(test::board_def({16, 1, 1}));
     const BoardBending f = first_bending(b);
@@ -226,7 +226,7 @@ TEST(ModalBasis, DeformedShapesAndHyperquadricsBuild)
 
 TEST(ModalBasis, EightNodeCellsLockInBending)
 {
-    // DESIGN.md §4: fully integrated 8-node cells are far too stiff in bending on a coarse lattice;
+    // Fully integrated 8-node cells are far too stiff in bending on a coarse lattice;
     // the same lattice of 20-node cells is within half a percent.
     sm::ModalBasisDef def = test::board_def({8, 2, 2}, 1);
     def.lattice.element_order = 1;

@@ -31,7 +31,7 @@ TEST(ModalBeamReference, TimoshenkoTendsToEulerBernoulliForSlenderBeams)
 
 TEST(ModalBeamReference, BoardEdgewiseModesSitBelowEulerBernoulli)
 {
-    // DESIGN.md §4: for the board's edgewise bending (L/h ≈ 11) Timoshenko sits about 3% below
+    // For the board's edgewise bending (L/h ≈ 11) Timoshenko sits about 3% below
     // Euler–Bernoulli for mode 1 and about 7% for mode 2; flatwise (L/h ≈ 26) under 1% and ~1.5%.
     const modal::BeamSection edge = test::board_section(test::k_board_width);
     const modal::BeamSection flat = test::board_section(test::k_board_thickness);

@@ -41,7 +41,7 @@ TEST(BallOnBoardSample, BoardRingsThenEverythingRests)
     EXPECT_EQ(w.warnings().modal_non_finite, 0u);
     // After 2 s everything rests (1 cm/s, the bound). The wood's rolling resistance (ℓ = 0.2 mm,
     // c_rr = ℓ/r = 0.008) stops the rolling ball at (5/7)·g·ℓ/r = 0.056 m/s²; without it the ball kept
-    // rolling at 1.2 cm/s (measured, session 3). The ball must still be on the board.
+    // rolling at 1.2 cm/s (measured). The ball must still be on the board.
     EXPECT_LT(sm::length(sm::body_linear_velocity(w, ball)), 0.01);
     EXPECT_LT(std::abs(sm::body_position(w, ball).x), 0.5);
     EXPECT_LT(sm::length(sm::body_linear_velocity(w, board)), 0.01);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// One cell of the stability map (issue #9, item 2): a small scene built with the public API, stepped
+// One cell of the stability map (docs/stability.md): a small scene built with the public API, stepped
 // for a short simulated time, and what it did: NaN/Inf, energy gain, penetration, guards. Shared by
 // bench/stability_map.cpp (the full grid, CSV) and tests/stability/stability_test.cpp (a coarse subset).
 #pragma once

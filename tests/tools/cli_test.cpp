@@ -61,7 +61,7 @@ TEST(Cli, ProjectileSceneMatchesTheDiscreteClosedForm)
 
 TEST(Cli, FreeSpinConservesEnergyOverTenSeconds)
 {
-    // Implicit midpoint keeps rotational kinetic energy to ~1e-12 relative; issue #3 asks for 1e-6.
+    // Implicit midpoint keeps rotational kinetic energy to ~1e-12 relative; docs/dynamics.md states 1e-6.
     const auto dir = temp_dir("spin");
     const Outcome o = run_cli("run " + scene("free_spin.json") + " --json " + (dir / "s.json").string());
     ASSERT_EQ(o.status, 0) << o.output;

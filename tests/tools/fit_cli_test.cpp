@@ -47,7 +47,7 @@ std::string write_obj(const sm::TriangleMesh& m, const char* name)
 
 TEST(FitCli, FitsAnObjAndPrintsALoadableScene)
 {
-    // Radii to 1 % and ε to 0.02 as issue #10 asks; OBJ goes through float storage (1e-7 relative).
+    // Radii to 1 % and ε to 0.02 as docs/pipeline.md states; OBJ goes through float storage (1e-7 relative).
     const sm::test::PosedShape truth =
         sm::test::random_pose(sm::test::superquadric({0.15, 0.3, 0.6}, 0.4, 0.9), 3);
     const std::string obj = write_obj(sm::test::posed_mesh(truth, 48), "body.obj");

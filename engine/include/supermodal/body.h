@@ -28,7 +28,7 @@ enum class MotionType : uint8_t {
     Dynamic,   ///< Moves under forces.
 };
 
-/// How a modal body's amplitudes are stepped (DESIGN.md §4 "Modal dynamics").
+/// How a modal body's amplitudes are stepped (docs/modal.md).
 enum class ModalIntegrator : uint8_t {
     Exact,             ///< Exact per-mode solution for a force held over the (sub)step; any step size.
     CentralDifference, ///< The paper's explicit scheme; stable for h·ω < 2: modes past it are stepped

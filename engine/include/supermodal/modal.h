@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Modal bases: the lowest free vibration modes of a body, computed once from a finite-element lattice
-// over its shape (Williams & Pentland 1992; DESIGN.md §4 "Modal dynamics"). A basis is model data:
+// over its shape (Williams & Pentland 1992; docs/modal.md). A basis is model data:
 // built once, immutable, shared by every body with the same shape, material and lattice.
 //
 // Frames and units. Everything lives in the shape frame (Barr: z is the polar axis), origin at the

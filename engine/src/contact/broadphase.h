@@ -3,7 +3,7 @@
 // large boxes (planes, a huge static body) tested against all. Expected O(n) for bodies of similar
 // size, where the sort-and-sweep it replaces grew as n^(5/3) for bodies filling a volume (measured:
 // 0.64 s for 10^5 boxes). Pairs come out sorted by (min index, max index), so the narrowphase sees
-// them in the same order whatever the input order (STYLE.md 2.9).
+// them in the same order whatever the input order (determinism).
 #pragma once
 
 #include "supermodal/entity.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Narrowphase: contact points of one pair. Two paths (DESIGN.md §4):
+// Narrowphase: contact points of one pair. Two paths (docs/contact.md):
 //  - sampling (the paper's): surface samples of one body tested with the other's inside-outside
 //    function, both ways; works for concave, tapered, bent bodies; each point carries a weight
 //    (its share of the touching surface area), so forces do not depend on the sample count;

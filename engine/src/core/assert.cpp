@@ -13,7 +13,7 @@ bool default_handler(const char* condition, const char* message, const char* fil
     std::fprintf(stderr, "supermodal: assertion failed: %s (%s) at %s:%d\n", message, condition, file, line);
     return true;
 }
-// The one mutable global: a host-installed hook, set at start-up (STYLE.md 2.6).
+// The one mutable global: a host-installed hook, set at start-up.
 AssertHandler g_handler = &default_handler;
 } // namespace
 

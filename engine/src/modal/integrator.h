@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Time stepping of one vibration mode, q̈ + 2ζω q̇ + ω² q = F, over a step h with the generalized force
-// F [√kg·m/s² = N/√kg] held constant over the step (DESIGN.md §4 "Modal dynamics").
+// F [√kg·m/s² = N/√kg] held constant over the step (docs/modal.md).
 #pragma once
 
 namespace supermodal::modal

@@ -220,7 +220,7 @@ Result<Json> parse_json_text(std::string_view text, const std::string& file)
     Json root;
     DomBuilder builder(root, text, file);
     // sax_parse reports through the builder and does not throw for JSON input; the catch keeps the
-    // no-exception promise of the public API should that change (STYLE.md 2.6).
+    // no-exception promise of the public API should that change.
     try {
         const bool parsed = Json::sax_parse(text.begin(), text.end(), &builder);
         if (builder.failed())
