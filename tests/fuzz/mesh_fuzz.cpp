@@ -1,7 +1,9 @@
 // Fuzz target for engine/src/io mesh import (libFuzzer): the files `fit`, `fit --attach` and a scene's
 // "mesh" read. The first byte picks the file extension (assimp chooses its reader by it), the rest is
 // the file. Any bytes in: never a crash, hang or sanitizer report; an accepted mesh must be well formed
-// (finite positions, a normal per position, whole triangles, indices in range).
+// (finite positions, a normal per position, whole triangles, indices in range). Every other value of
+// the first byte's sixes reads the look too (a scene's "mesh" does): texture coordinates per vertex
+// or none, a material per triangle and in range, or none.
 #include "supermodal/mesh_io.h"
 
 #include <cmath>
@@ -28,7 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     } else {
         return 0;
     }
-    const supermodal::Result<supermodal::ImportedMesh> mesh = supermodal::import_mesh(path);
+    supermodal::ImportDef def = supermodal::default_import_def();
+    def.keep_look = (data[0] / (sizeof k_extensions / sizeof k_extensions[0])) % 2 == 1;
+    const supermodal::Result<supermodal::ImportedMesh> mesh = supermodal::import_mesh(path, def);
     std::remove(path.c_str());
     if (!mesh) {
         if (mesh.error().what.empty())
@@ -43,6 +47,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             std::abort();
     for (const uint32_t i : m.indices)
         if (i >= m.positions.size())
+            std::abort();
+    const supermodal::MeshLook& look = mesh->look;
+    if (!look.texcoords.empty() && look.texcoords.size() != 2 * m.positions.size())
+        std::abort();
+    if (!look.triangle_materials.empty() && look.triangle_materials.size() * 3 != m.indices.size())
+        std::abort();
+    for (const uint32_t k : look.triangle_materials)
+        if (k >= look.materials.size())
             std::abort();
     return 0;
 }
