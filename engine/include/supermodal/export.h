@@ -48,7 +48,7 @@ struct ExportBody {
     std::vector<double> amplitudes;     ///< Per sample, r modal amplitudes q [√kg·m] (frame-major).
     /// The mesh's texture coordinates and materials (an artist's mesh, ExportBodyMesh::look); empty for
     /// a tessellation. The GLB writes one primitive per material, and TEXCOORD_0 when it has (u, v).
-    MeshLook look;
+    MeshLook look{};
     /// Linear RGB in [0, 1]: the GLB material of a body whose look has no materials (a scene's
     /// bodies take scene_body_colors(), as the renderer draws them).
     Vec3 base_color{0.8, 0.8, 0.8};
@@ -65,7 +65,7 @@ struct ExportBodyMesh {
     std::string body;                         ///< Body name.
     std::shared_ptr<const TriangleMesh> mesh; ///< Vertices [m] in the body's shape frame.
     /// Its texture coordinates and materials (SceneBody::render_look), or null.
-    std::shared_ptr<const MeshLook> look;
+    std::shared_ptr<const MeshLook> look = nullptr;
 };
 
 /// Builds the meshes, then steps `world` for def.seconds, sampling at each step nearest k/fps (k = 0 is
