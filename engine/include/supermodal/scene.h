@@ -64,7 +64,7 @@ struct SceneBody {
     std::shared_ptr<const TriangleMesh> render_mesh;
     /// The mesh's texture coordinates and materials (per render_mesh vertex and triangle); null when
     /// `mesh` is empty or the file has neither.
-    std::shared_ptr<const MeshLook> render_look;
+    std::shared_ptr<const MeshLook> render_look = nullptr;
 };
 
 /// One constraint of a scene: its def with the bodies named (b empty = the world).
