@@ -75,10 +75,7 @@ py::dict export_glb(WorldBox& box, const py::object& path_arg, const py::kwargs&
     check_status(sm::validate(def));
     // Recording steps the world; a refused or failed export puts it back as it was.
     const sm::Snapshot before = box.world.snapshot();
-    sm::Result<sm::ExportRecording> rec = [&] {
-        py::gil_scoped_release release;
-        return sm::record_animation(box.world, def);
-    }();
+    sm::Result<sm::ExportRecording> rec = sm::record_animation(box.world, def);
     if (rec)
         if (sm::Status written = sm::write_glb(*rec, path); !written)
             rec = sm::Result<sm::ExportRecording>(written.error());

@@ -113,7 +113,6 @@ void step(WorldBox& box, const py::handle& count_arg)
     const int count = to_int(count_arg, "count");
     if (count < 0)
         raise_argument("count", "expected a step count >= 0, got " + std::to_string(count));
-    py::gil_scoped_release release;
     for (int i = 0; i < count; ++i)
         box.world.step();
 }
@@ -123,7 +122,6 @@ int advance(WorldBox& box, const py::handle& seconds_arg)
     const double seconds = to_number(seconds_arg, "seconds");
     if (seconds < 0.0)
         raise_argument("seconds", "expected a time >= 0 s");
-    py::gil_scoped_release release;
     return box.world.advance(seconds);
 }
 
@@ -199,7 +197,8 @@ A refused value raises ArgumentError naming the keyword and leaves the world unc
     knob<int>(c, "contact_iterations", "The soft contact solver's passes per substep [-], in [1, 100].");
     knob<int>(c, "constraint_iterations", "Joint solver passes per substep [-], in [1, 100].");
     c.def("step", &step, py::arg("count") = 1,
-          "Runs `count` fixed steps of dt (the GIL is released meanwhile).");
+          "Runs `count` fixed steps of dt, >= 0. The GIL stays held: another Python thread cannot reach the "
+          "world while it steps (the engine refuses changes during a step).");
     c.def("advance", &advance, py::arg("seconds"),
           "Adds `seconds` [s], >= 0, of real time to the accumulator and runs the whole steps it holds (at "
           "most max_steps_per_advance). Returns the number of steps run.");
