@@ -6,7 +6,8 @@ n calls world.step() from a Python loop; their difference per step is what a Pyt
 on a shared machine it is within the steps' own noise, so the cost of one call is also measured alone:
 world.step(0), everything a call does but the step.
 Arrays: World.positions()/orientations() (one call, one numpy copy) against reading Body.position for
-every body, on a world of 10^4 bodies. Each figure is the median of REPEATS interleaved runs.
+every body, on a world of 10^4 bodies. Each figure is the median of REPEATS interleaved runs; for the
+steps also the minimum of each (the least disturbed run).
 Usage: PYTHONPATH=build/python python3 bench/python_overhead.py [--steps N] [--repeats R]"""
 import argparse
 import json
@@ -45,8 +46,10 @@ def per_step_overhead(world, steps, repeats):
         first, second = (one_call, python_loop) if r % 2 == 0 else (python_loop, one_call)
         assert first() == second()  # the same steps either way
     c, p = statistics.median(in_cpp), statistics.median(in_python)
+    c_min, p_min = min(in_cpp), min(in_python)  # the least disturbed run of each
     call = call_cost(world)
     return {"step_us": c * 1e6, "python_loop_step_us": p * 1e6, "loop_difference_us": (p - c) * 1e6,
+            "min_step_us": c_min * 1e6, "min_loop_difference_us": (p_min - c_min) * 1e6,
             "call_us": call * 1e6, "call_percent_of_step": 100.0 * call / c}
 
 
