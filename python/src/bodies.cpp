@@ -129,8 +129,7 @@ sm::BodyDef read_body_def(const py::kwargs& kwargs)
 {
     Kwargs kw("create_body", kwargs);
     sm::BodyDef def = sm::default_body_def();
-    if (kw.has("material")) {
-        const py::object m = kw.object("material");
+    if (const py::object m = kw.object("material"); !m.is_none()) {
         if (!py::isinstance<sm::MaterialDef>(m))
             raise_type("material", "expected a supermodal.Material");
         apply_material(m.cast<const sm::MaterialDef&>(), def);

@@ -56,7 +56,7 @@ def test_stub_keywords_are_accepted_with_their_defaults(cls, method):
     names, defaults = keywords(cls, method)
     w = sm.World()
     for name, default in zip(names, defaults):
-        if default is ... or default is None:
+        if default is ...:  # +inf in the module; the stubs cannot spell it
             continue
         # Each keyword with its documented default is accepted, one at a time.
         if cls == "World" and method == "__init__":
