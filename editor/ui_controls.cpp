@@ -29,7 +29,7 @@ template <class... Args> void line(SpeedAccuracyReadout& r, const char* format, 
 {
     char text[256];
     std::snprintf(text, sizeof text, format, args...);
-    ImGui::TextUnformatted(text);
+    ImGui::TextWrapped("%s", text); // the column is narrow: long readouts wrap instead of being cut
     r.lines.emplace_back(text);
 }
 
