@@ -122,9 +122,12 @@ struct WindowHost {
         glfwPollEvents();
         if (session.has_world()) {
             apply_scene_looks(renderer, session.scene(), session.world());
-            ui.report(renderer.render(session.world(), editor_camera(session, ui), image,
-                                      PoseSource::Interpolated, {},
-                                      view_rect(ui, image_width(), image_height())));
+            // Only a failure is reported: a success would clear the error of a widget's action.
+            if (Status drawn = renderer.render(session.world(), editor_camera(session, ui), image,
+                                               PoseSource::Interpolated, {},
+                                               view_rect(ui, image_width(), image_height()));
+                !drawn)
+                ui.report(drawn);
         }
         glfwMakeContextCurrent(window); // the renderer made its own context current
         if (!image.rgba.empty())
