@@ -130,6 +130,9 @@ BENCHMARK(BM_CaptureChair)
     ->Args({1, -1, 48, 1})
     ->Args({4, -1, 48, 1})
     ->Args({1, -1, 48, 0})
+    ->Args({1, -1, 32, 0})
+    ->Args({4, -1, 32, 0})
+    ->Args({2, -1, 32, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
