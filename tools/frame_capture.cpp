@@ -43,8 +43,8 @@ bool parse_size(const std::string& text, int& w, int& h)
     return true;
 }
 
-// One encoding thread overlaps a frame's PNG with the next render; more help only when cores are left
-// over after llvmpipe's rasterising threads (docs/rendering.md, measured with bench/render_bench.cpp).
+// The PNGs are encoded off the render loop. On two cores one thread gained nothing measurable and two
+// cost more CPU (docs/rendering.md); one per four cores leaves llvmpipe its rasterising threads.
 PngWriterDef png_writer_def()
 {
     PngWriterDef def;
