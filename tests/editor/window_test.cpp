@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
+#include <unistd.h>
 
 namespace sm = supermodal;
 
@@ -23,6 +24,24 @@ const std::string k_golden = std::string(SM_SOURCE_DIR) + "/tests/editor/golden/
 constexpr int k_tolerance = 16;
 constexpr double k_max_fraction = 0.01;
 
+/// The editor with `args` in a 1280x720 virtual X server. `xvfb-run -a` takes the first free display
+/// from -n on; two runs starting together (other builds on the machine) can both pick it and one X
+/// server then fails to start, so the search starts at a number of this process's own and a failed
+/// start is tried once more. The editor's own failures are not retried.
+sm::test::CommandOutcome run_in_xvfb(const std::string& args)
+{
+    sm::test::CommandOutcome o;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        const int display = 100 + static_cast<int>((::getpid() * 7 + attempt * 397) % 800);
+        o = sm::test::run_command("xvfb-run -a -n " + std::to_string(display) +
+                                  " -s '-screen 0 1280x720x24' " + std::string(SM_EDITOR_EXE) + " " + args +
+                                  " 2>&1");
+        if (o.output.find("Xvfb failed to start") == std::string::npos)
+            break;
+    }
+    return o;
+}
+
 } // namespace
 
 TEST(EditorWindow, AScriptThroughTheWindowMatchesTheGoldenImageAndLeavesTheViewSixtyPercent)
@@ -31,10 +50,9 @@ TEST(EditorWindow, AScriptThroughTheWindowMatchesTheGoldenImageAndLeavesTheViewS
     std::filesystem::create_directories(out);
     const std::filesystem::path shot = out / "window.png";
     std::filesystem::remove(shot);
-    // -a: a free display number, so parallel tests do not collide; the screen fits the 1280x720 window.
-    const sm::test::CommandOutcome o = sm::test::run_command(
-        "xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(SM_EDITOR_EXE) + " --script " +
-        SM_SOURCE_DIR + "/tests/editor/window_script.json --screenshot " + shot.string() + " 2>&1");
+    const sm::test::CommandOutcome o =
+        run_in_xvfb(std::string("--script ") + SM_SOURCE_DIR +
+                    "/tests/editor/window_script.json --screenshot " + shot.string());
     ASSERT_EQ(o.status, 0) << "needs xvfb-run (scripts/deps.sh installs xvfb and xauth)\n" << o.output;
     // The script's viewport action checked the 60% and logged the rectangle.
     EXPECT_NE(o.output.find("viewport 800x720 at (211, 0): 62.5% of the display"), std::string::npos)
@@ -61,8 +79,7 @@ TEST(EditorWindow, AScriptThroughTheWindowMatchesTheGoldenImageAndLeavesTheViewS
 TEST(EditorWindow, AFailedCheckInTheWindowExitsWithStatus1)
 {
     const sm::test::CommandOutcome o =
-        sm::test::run_command("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(SM_EDITOR_EXE) +
-                              " --script " + SM_SOURCE_DIR + "/tests/editor/window_fail_script.json 2>&1");
+        run_in_xvfb(std::string("--script ") + SM_SOURCE_DIR + "/tests/editor/window_fail_script.json");
     EXPECT_EQ(o.status, 1) << o.output;
     EXPECT_NE(o.output.find("expected \"ball\" to be selected"), std::string::npos) << o.output;
 }
