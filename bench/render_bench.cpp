@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Headless capture speed (docs/rendering.md): frames per second of the chair scene at 1280x720 on
-// whatever EGL offers (llvmpipe on a machine without a GPU), with and without PNG encoding.
+// whatever EGL offers (llvmpipe on a machine without a GPU), with and without PNG files; and the PNG
+// encoders and settings compared on one rendered frame.
 #include "supermodal/body.h"
 #include "supermodal/render.h"
 #include "supermodal/scene.h"
@@ -9,7 +10,11 @@
 #include <benchmark/benchmark.h>
 #include <cstdio>
 #include <ctime>
+#include <memory>
+#include <spng.h>
+#include <stb_image_write.h>
 #include <string>
+#include <zlib.h>
 
 namespace sm = supermodal;
 
@@ -43,7 +48,36 @@ double process_cpu_seconds()
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// Args: MSAA samples, 1 = also write a PNG, tessellation segments, 1 = ground grid.
+// Writes PNG files of the captured frames as a host would: -1 none, 0 write_png() in the render loop,
+// k >= 1 through a PngWriter with k threads.
+struct PngSink {
+    int mode = -1;
+    std::unique_ptr<sm::PngWriter> writer;
+    long long frame = 0;
+
+    explicit PngSink(int m) : mode(m)
+    {
+        if (mode >= 1)
+            writer = std::move(*sm::PngWriter::create({.threads = mode, .queue = 2}));
+    }
+    bool put(sm::Image& image)
+    {
+        if (mode < 0)
+            return true;
+        const std::string path = "/tmp/supermodal_render_bench_" + std::to_string(frame++ % 8) + ".png";
+        if (mode == 0)
+            return sm::write_png(path, image).ok();
+        return writer->submit(path, std::move(image)).ok();
+    }
+    bool finish() { return !writer || writer->finish().ok(); }
+    ~PngSink()
+    {
+        for (int i = 0; i < 8; ++i)
+            std::remove(("/tmp/supermodal_render_bench_" + std::to_string(i) + ".png").c_str());
+    }
+};
+
+// Args: MSAA samples, PNG files (PngSink's mode), tessellation segments, 1 = ground grid.
 void BM_CaptureChair(benchmark::State& st)
 {
     Setup s = chair();
@@ -63,17 +97,18 @@ void BM_CaptureChair(benchmark::State& st)
     for (size_t i = 0; i < bodies.size(); ++i)
         r->set_body_color(bodies[i], colors[i]);
     const sm::CameraDef camera = sm::frame_bodies(s.world, s.scene.camera, 1280.0 / 720.0);
-    const std::string path = "/tmp/supermodal_render_bench.png";
+    PngSink png(static_cast<int>(st.range(1)));
     sm::Image image;
     const double cpu0 = process_cpu_seconds();
     for (auto _ : st) {
         if (!r->render(s.world, camera, image))
             st.SkipWithError("render failed");
-        if (st.range(1) != 0 && !sm::write_png(path, image))
-            st.SkipWithError("png failed");
         benchmark::DoNotOptimize(image.rgba.data());
+        if (!png.put(image))
+            st.SkipWithError("png failed");
     }
-    std::remove(path.c_str());
+    if (!png.finish()) // the last frames' files count in the time
+        st.SkipWithError("png failed");
     // CPU time of every thread (llvmpipe rasterises on its own threads) per frame: on a loaded machine
     // wall time mostly measures the other loads, this the renderer's own work.
     st.counters["cpu_ms_per_frame"] =
@@ -84,16 +119,139 @@ void BM_CaptureChair(benchmark::State& st)
 }
 BENCHMARK(BM_CaptureChair)
     ->ArgNames({"samples", "png", "segments", "grid"})
-    ->Args({1, 0, 48, 1})
-    ->Args({4, 0, 48, 1})
-    ->Args({4, 1, 48, 1})
-    ->Args({1, 1, 48, 1})
+    ->Args({1, -1, 32, 1})
+    ->Args({4, -1, 32, 1})
     ->Args({1, 0, 32, 1})
     ->Args({4, 0, 32, 1})
-    ->Args({4, 1, 32, 1})
     ->Args({1, 1, 32, 1})
-    ->Args({1, 0, 48, 0})
+    ->Args({4, 1, 32, 1})
+    ->Args({1, 2, 32, 1})
+    ->Args({4, 2, 32, 1})
+    ->Args({1, -1, 48, 1})
+    ->Args({4, -1, 48, 1})
+    ->Args({1, -1, 48, 0})
+    ->Args({1, -1, 32, 0})
+    ->Args({4, -1, 32, 0})
+    ->Args({2, -1, 32, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+} // namespace
+
+namespace
+{
+
+// One rendered frame of the chair scene (1280x720, 4x MSAA), the input of every encoder below.
+const sm::Image& chair_frame()
+{
+    static const sm::Image frame = [] {
+        Setup s = chair();
+        sm::Result<sm::Renderer> r = sm::Renderer::create(sm::default_render_def());
+        if (!r)
+            std::abort();
+        sm::apply_scene_looks(*r, s.scene, s.world);
+        sm::Image image;
+        if (!r->render(s.world, sm::frame_bodies(s.world, s.scene.camera, 1280.0 / 720.0), image))
+            std::abort();
+        return image;
+    }();
+    return frame;
+}
+
+// libspng with the given zlib level, zlib strategy and row filters, RGBA or RGB; the PNG's size.
+size_t spng_size(const sm::Image& image, int level, int strategy, int filters, bool rgb)
+{
+    std::vector<uint8_t> packed;
+    if (rgb)
+        for (size_t i = 0; i < image.rgba.size(); i += 4)
+            packed.insert(packed.end(), image.rgba.begin() + static_cast<long>(i),
+                          image.rgba.begin() + static_cast<long>(i) + 3);
+    const std::vector<uint8_t>& px = rgb ? packed : image.rgba;
+    spng_ctx* ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+    spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+    spng_set_option(ctx, SPNG_IMG_COMPRESSION_LEVEL, level);
+    spng_set_option(ctx, SPNG_IMG_COMPRESSION_STRATEGY, strategy);
+    spng_set_option(ctx, SPNG_FILTER_CHOICE, filters);
+    spng_ihdr ihdr{};
+    ihdr.width = static_cast<uint32_t>(image.width);
+    ihdr.height = static_cast<uint32_t>(image.height);
+    ihdr.bit_depth = 8;
+    ihdr.color_type = rgb ? SPNG_COLOR_TYPE_TRUECOLOR : SPNG_COLOR_TYPE_TRUECOLOR_ALPHA;
+    spng_set_ihdr(ctx, &ihdr);
+    size_t size = 0;
+    int error = spng_encode_image(ctx, px.data(), px.size(), SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
+    void* out = error == 0 ? spng_get_png_buffer(ctx, &size, &error) : nullptr;
+    std::free(out);
+    spng_ctx_free(ctx);
+    return error == 0 ? size : 0;
+}
+
+// stb_image_write at a level with one filter for every row (-1: the best of five per row).
+size_t stb_size(const sm::Image& image, int level, int filter)
+{
+    stbi_write_png_compression_level = level;
+    stbi_write_force_png_filter = filter;
+    size_t size = 0;
+    const auto count = [](void* total, void*, int n) {
+        *static_cast<size_t*>(total) += static_cast<size_t>(n);
+    };
+    if (stbi_write_png_to_func(count, &size, image.width, image.height, 4, image.rgba.data(),
+                               image.width * 4) == 0)
+        return 0;
+    return size;
+}
+
+// Arg: which encoder (the list below); in memory, one thread.
+void BM_EncodePng(benchmark::State& st)
+{
+    const sm::Image& image = chair_frame();
+    size_t bytes = 0;
+    for (auto _ : st) {
+        switch (st.range(0)) {
+        case 0:
+            bytes = stb_size(image, 8, -1);
+            break; // stb's defaults
+        case 1:
+            bytes = stb_size(image, 1, 1);
+            break; // stb, level 1, Sub
+        case 2:
+            bytes = spng_size(image, 6, Z_FILTERED, SPNG_FILTER_CHOICE_ALL, false);
+            break; // spng's defaults
+        case 3:
+            bytes = spng_size(image, 1, Z_DEFAULT_STRATEGY, SPNG_FILTER_CHOICE_ALL, false);
+            break;
+        case 4:
+            bytes = spng_size(image, 1, Z_DEFAULT_STRATEGY, SPNG_FILTER_CHOICE_SUB, false);
+            break;
+        case 5:
+            bytes = spng_size(image, 1, Z_RLE, SPNG_FILTER_CHOICE_SUB, false);
+            break;
+        case 6:
+            bytes = spng_size(image, 1, Z_DEFAULT_STRATEGY, SPNG_FILTER_CHOICE_SUB, true);
+            break;
+        case 7:
+            bytes = spng_size(image, 1, Z_RLE, SPNG_FILTER_CHOICE_SUB, true);
+            break;
+        default: { // what write_png() does
+            sm::Result<std::vector<uint8_t>> png = sm::encode_png(image);
+            bytes = png ? png->size() : 0;
+        }
+        }
+        if (bytes == 0)
+            st.SkipWithError("encoding failed");
+    }
+    st.counters["bytes"] = static_cast<double>(bytes);
+    static const char* const names[] = {"stb level 8, best filter per row",
+                                        "stb level 1, Sub",
+                                        "spng level 6, best filter per row",
+                                        "spng level 1, best filter per row",
+                                        "spng level 1, Sub",
+                                        "spng level 1 RLE, Sub",
+                                        "spng level 1, Sub, RGB",
+                                        "spng level 1 RLE, Sub, RGB",
+                                        "encode_png()"};
+    st.SetLabel(names[std::min<int64_t>(st.range(0), 8)]);
+}
+BENCHMARK(BM_EncodePng)->DenseRange(0, 8)->ArgName("encoder")->Unit(benchmark::kMillisecond);
 
 } // namespace

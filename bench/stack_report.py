@@ -31,6 +31,13 @@ def table(rows):
               f"{float(r['max_speed_after_2s']):.3g} | {r['stands']} |")
 
 
+def subtitle(path):
+    """The CSV's settings line (a '# supermodal ...' comment up to its first ':' or ';'), if any."""
+    with open(path, encoding="utf-8") as f:
+        notes = [line[2:].strip() for line in f if line.startswith("# supermodal")]
+    return "\\n" + notes[0].split(";")[0].split(":")[0].replace('"', "'") if notes else ""
+
+
 def plot(path, rows):
     series = {}  # (scene, engine) -> [(dt, drift, speed)]
     for r in rows:
@@ -50,7 +57,7 @@ def plot(path, rows):
     script = f"""
 set terminal pngcairo size 1200,500 font "Helvetica,10" noenhanced
 set output "{path[:-4]}.png"
-set multiplot layout 1,2 title "Stacking: rounded boxes (half 0.1 m), 10 s, one substep, one thread"
+set multiplot layout 1,2 title "Stacking: rounded boxes (half 0.1 m), 10 s, one world substep, one thread{subtitle(path)}"
 set logscale xy
 set format "%g"
 set xrange [0.0008:0.02]

@@ -49,7 +49,8 @@ int choose_mode(EditorArgs& a)
     return -1;
 }
 
-/// Loads the scene, runs the script, then opens the window or writes the screenshot.
+/// Loads the scene; in a window runs the script there (and shoots the window), headless runs it and
+/// writes the screenshot.
 int run_editor(const EditorArgs& a)
 {
     using namespace supermodal::editor;
@@ -60,21 +61,22 @@ int run_editor(const EditorArgs& a)
             std::cerr << status.error().message() << "\n";
             return k_exit_bad_input;
         }
+    std::ostringstream discard;
+    std::ostream& log = a.quiet ? static_cast<std::ostream&>(discard) : std::cout;
+    if (!a.headless) {
+        WindowUnavailable why;
+        const int status = run_window(session, ui, WindowRun{a.script, a.screenshot, &log}, why);
+        if (!why.message.empty())
+            std::cerr << "supermodal-editor: cannot open a window: " << why.message
+                      << "; use --headless --script actions.json\n";
+        return status;
+    }
     if (!a.script.empty()) {
-        std::ostringstream discard;
-        const ScriptOutcome outcome = run_script_file(a.script, session, ui, a.quiet ? discard : std::cout);
+        const ScriptOutcome outcome = run_script_file(a.script, session, ui, log);
         if (outcome.failure != ScriptFailure::None) {
             std::cerr << outcome.error.message() << "\n";
             return outcome.failure == ScriptFailure::CheckFailed ? k_exit_failed : k_exit_bad_input;
         }
-    }
-    if (!a.headless) {
-        WindowUnavailable why;
-        const int status = run_window(session, ui, why);
-        if (status != k_exit_ok)
-            std::cerr << "supermodal-editor: cannot open a window: " << why.message
-                      << "; use --headless --script actions.json\n";
-        return status;
     }
     if (!a.screenshot.empty()) {
         ui.frame(0.0);
@@ -95,7 +97,8 @@ int main(int argc, char** argv)
     EditorArgs a;
     app.add_flag("--headless", a.headless, "No window: run --script and exit");
     app.add_option("--script", a.script, "Actions to run (JSON, docs/editor.md)")->check(CLI::ExistingFile);
-    app.add_option("--screenshot", a.screenshot, "PNG of the editor after the script");
+    app.add_option("--screenshot", a.screenshot,
+                   "PNG of the editor after the script (in a window: its framebuffer, then it closes)");
     app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
     app.add_option("scene", a.scene, "Scene to load first (format v1)");
     app.add_flag("-q,--quiet", a.quiet, "No per-action log");

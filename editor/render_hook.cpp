@@ -7,6 +7,8 @@
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
 #include "supermodal/body.h"
 
+#include <algorithm>
+#include <cmath>
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 #endif
@@ -31,12 +33,39 @@ void bind_font_texture(ImDrawData& data, ImTextureID font)
 
 const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui)
 {
-    if (!ui.view_camera || ui.view_generation != session.generation()) {
-        ui.view_camera = frame_bodies(session.world(), session.scene().camera,
-                                      static_cast<double>(ui.width()) / ui.height());
+    const ScreenRect& v = ui.viewport();
+    const double aspect = static_cast<double>(v.width()) / std::max(v.height(), 1.0f);
+    if (!ui.view_camera || ui.view_generation != session.generation() || ui.view_aspect != aspect) {
+        ui.view_camera = frame_bodies(session.world(), session.scene().camera, aspect);
         ui.view_generation = session.generation();
+        ui.view_aspect = aspect;
     }
     return *ui.view_camera;
+}
+
+PixelRect view_rect(const EditorUi& ui, int width, int height)
+{
+    const ScreenRect& v = ui.viewport();
+    const double sx = static_cast<double>(width) / ui.width(), sy = static_cast<double>(height) / ui.height();
+    PixelRect r;
+    r.x = std::clamp(static_cast<int>(std::lround(v.x0 * sx)), 0, width - 1);
+    r.y = std::clamp(static_cast<int>(std::lround(v.y0 * sy)), 0, height - 1);
+    r.width = std::clamp(static_cast<int>(std::lround(v.x1 * sx)), r.x + 1, width) - r.x;
+    r.height = std::clamp(static_cast<int>(std::lround(v.y1 * sy)), r.y + 1, height) - r.y;
+    return r;
+}
+
+std::optional<std::array<double, 2>> screen_pixel(const EditorSession& session, EditorUi& ui,
+                                                  const Vec3& point)
+{
+    const PixelRect r = view_rect(ui, ui.width(), ui.height());
+    std::optional<std::array<double, 2>> p =
+        project_to_pixel(session.world(), editor_camera(session, ui), r.width, r.height, point);
+    if (p) {
+        (*p)[0] += r.x;
+        (*p)[1] += r.y;
+    }
+    return p;
 }
 
 Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, int width, int height)
@@ -75,8 +104,8 @@ Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, in
         ImGui_ImplOpenGL3_RenderDrawData(data);
     };
     Image image;
-    Status drawn =
-        renderer->render(world, editor_camera(session, ui), image, PoseSource::Interpolated, overlay);
+    Status drawn = renderer->render(world, editor_camera(session, ui), image, PoseSource::Interpolated,
+                                    overlay, view_rect(ui, width, height));
     if (backend) {
         // Back to a headless atlas: draw commands of later frames get texture 0 again.
         ImGui_ImplOpenGL3_Shutdown();
@@ -103,8 +132,9 @@ Result<Ray> screen_ray(const EditorSession& session, EditorUi& ui, double x, dou
 {
     if (!session.has_world())
         return Error{"", "", "no scene is loaded"};
+    const PixelRect v = view_rect(ui, ui.width(), ui.height());
     const CameraRay r =
-        camera_ray(session.world(), editor_camera(session, ui), ui.width(), ui.height(), x, y);
+        camera_ray(session.world(), editor_camera(session, ui), v.width, v.height, x - v.x, y - v.y);
     return Ray{r.origin, r.direction};
 }
 #else
@@ -113,6 +143,11 @@ Status render_screenshot(const EditorSession&, EditorUi&, const std::string& png
     return Error{
         png_path, "",
         "cannot write a screenshot: this build has no renderer (configure with SUPERMODAL_RENDER=ON)"};
+}
+
+std::optional<std::array<double, 2>> screen_pixel(const EditorSession&, EditorUi&, const Vec3&)
+{
+    return std::nullopt;
 }
 
 Result<Ray> screen_ray(const EditorSession&, EditorUi&, double, double)

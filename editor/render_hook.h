@@ -6,6 +6,8 @@
 #include "session.h"
 #include "ui.h"
 
+#include <array>
+#include <optional>
 #include <string>
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
@@ -22,12 +24,21 @@ namespace supermodal::editor
                                        const std::string& png_path, int width, int height);
 
 /// The world ray through pixel (x, y) of the UI's display (top-left origin, y down) [px], seen by the
-/// scene's camera as the screenshot draws it. Fails without the renderer or a loaded scene.
+/// camera of the 3-D view (ui.viewport()) as the screenshot draws it. Fails without the renderer or a
+/// loaded scene.
 [[nodiscard]] Result<Ray> screen_ray(const EditorSession& session, EditorUi& ui, double x, double y);
 
+/// Where a world point [m] lands on the UI's display [px] (inverse of screen_ray); nothing behind the eye
+/// or without the renderer.
+[[nodiscard]] std::optional<std::array<double, 2>> screen_pixel(const EditorSession& session, EditorUi& ui,
+                                                                const Vec3& point);
+
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
-/// ui.view_camera, framed (frame_bodies at the UI's aspect) when the session was loaded or reset since.
+/// ui.view_camera, framed (frame_bodies at the 3-D view's aspect) when the session was loaded or reset
+/// since, or the view changed shape.
 [[nodiscard]] const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui);
+/// The 3-D view's rectangle in an image of width × height showing the UI's display (scaled).
+[[nodiscard]] PixelRect view_rect(const EditorUi& ui, int width, int height);
 /// The screenshot's pixels (see render_screenshot).
 [[nodiscard]] Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, int width,
                                                 int height);

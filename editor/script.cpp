@@ -2,7 +2,9 @@
 #include "script.h"
 
 #include "render_hook.h"
+#include "supermodal/body.h"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -175,7 +177,7 @@ void run_frames(const ActionContext& c)
     if (!(seconds > 0.0 && seconds <= 1.0))
         fail(c.where + "/seconds", "expected seconds per frame in (0, 1]");
     for (int i = 0; i < n; ++i)
-        c.ui.frame(seconds);
+        c.ui.host_frame(seconds);
     c.log << " " << n << ": t = " << c.session.world().time() << " s";
 }
 
@@ -278,6 +280,92 @@ void run_push(const ActionContext& c)
     }
 }
 
+/// The display pixel of a mouse action: "x" and "y", or "body" (where its centre is drawn).
+std::array<double, 2> mouse_pixel(const ActionContext& c)
+{
+    if (c.action.contains("body") == c.action.contains("x"))
+        fail(c.where, "expected either \"x\", \"y\" or \"body\"");
+    if (!c.action.contains("body"))
+        return {number(c.action, c.where, "x", NAN), number(c.action, c.where, "y", NAN)};
+    const std::string name = text(c.action, c.where, "body");
+    const Entity e = find_body(c.session.world(), name);
+    if (e.is_null())
+        fail(c.where + "/body", "no body named \"" + name + "\"");
+    const std::optional<std::array<double, 2>> p =
+        screen_pixel(c.session, c.ui, body_position(c.session.world(), e));
+    if (!p)
+        fail(c.where + "/body", "\"" + name + "\" is behind the camera");
+    return *p;
+}
+
+/// Mouse events as the host delivers them (a window: through its GLFW callbacks), then frames.
+void run_mouse(const ActionContext& c)
+{
+    const auto [x, y] = mouse_pixel(c);
+    if (!(x >= 0.0 && x <= c.ui.width()))
+        fail(c.where + "/x", "expected a pixel in [0, " + std::to_string(c.ui.width()) + "], found " +
+                                 kind_of(c.action.value("x", Json())));
+    if (!(y >= 0.0 && y <= c.ui.height()))
+        fail(c.where + "/y", "expected a pixel in [0, " + std::to_string(c.ui.height()) + "], found " +
+                                 kind_of(c.action.value("y", Json())));
+    c.ui.input.cursor(x, y);
+    c.log << " at (" << x << ", " << y << ")";
+    if (c.action.contains("button")) {
+        const std::string name = text(c.action, c.where, "button");
+        if (name != "left" && name != "right")
+            fail(c.where + "/button", R"(expected "left" or "right", found ")" + name + "\"");
+        const Json& down = required(c.action, c.where, "down");
+        if (!down.is_boolean())
+            fail(c.where + "/down", "expected true or false, found " + kind_of(down));
+        c.ui.input.button(name == "left" ? MouseButton::Left : MouseButton::Right, down.get<bool>());
+        c.log << " " << name << (down.get<bool>() ? " down" : " up");
+    }
+    const int n = count(c.action, c.where, "frames", 1);
+    for (int i = 0; i < n; ++i)
+        c.ui.host_frame(1.0 / 60.0);
+    if (c.action.contains("expect") && text(c.action, c.where, "expect") != c.ui.selected_body())
+        fail(c.where + "/expect",
+             "expected \"" + c.action["expect"].get<std::string>() +
+                 "\" to be selected, the selection is \"" + c.ui.selected_body() + "\"",
+             ScriptFailure::CheckFailed);
+}
+
+/// A key pressed and released, a frame after each.
+void run_key(const ActionContext& c)
+{
+    const std::string name = text(c.action, c.where, "key");
+    const std::optional<EditorKey> key = key_from_name(name);
+    if (!key)
+        fail(c.where + "/key", "unknown key "
+                               " + name + "
+                               "; keys are: " +
+                                   key_names());
+    c.ui.input.key(*key, true);
+    c.ui.host_frame(0.0);
+    c.ui.input.key(*key, false);
+    c.ui.host_frame(0.0);
+    c.log << " " << name;
+}
+
+/// Logs the 3-D view's rectangle in the last frame; with "min_fraction", checks its share of the display.
+void run_viewport(const ActionContext& c)
+{
+    const ScreenRect& v = c.ui.viewport();
+    const double fraction = v.area() / (static_cast<double>(c.ui.width()) * c.ui.height());
+    c.log << " " << v.width() << "x" << v.height() << " at (" << v.x0 << ", " << v.y0
+          << "): " << 100.0 * fraction << "% of the display";
+    if (c.action.contains("min_fraction")) {
+        const double min = number(c.action, c.where, "min_fraction", 0.0);
+        if (!(min >= 0.0 && min <= 1.0))
+            fail(c.where + "/min_fraction", "expected a fraction in [0, 1]");
+        if (fraction < min)
+            fail(c.where + "/min_fraction",
+                 "the 3-D view keeps " + std::to_string(fraction) + " of the display, expected at least " +
+                     std::to_string(min),
+                 ScriptFailure::CheckFailed);
+    }
+}
+
 void run_windows(const ActionContext& c)
 {
     const Json& show = required(c.action, c.where, "show");
@@ -319,6 +407,9 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"drag", {{"ray", "to", "steps", "x0", "y0", "x1", "y1"}, run_drag}},
     {"push", {{"ray", "force", "steps", "x", "y", "depth"}, run_push}},
     {"windows", {{"show"}, run_windows}},
+    {"mouse", {{"x", "y", "body", "button", "down", "frames", "expect"}, run_mouse}},
+    {"key", {{"key"}, run_key}},
+    {"viewport", {{"min_fraction"}, run_viewport}},
     {"save", {{"file", "state"}, run_save}},
 };
 

@@ -5,6 +5,7 @@
 // mouse input, pressing widgets by their label.
 #pragma once
 
+#include "input.h"
 #include "session.h"
 
 #include <functional>
@@ -43,6 +44,22 @@ struct SpeedAccuracyReadout {
     std::vector<std::string> lines;  ///< The text lines, as drawn.
 };
 
+/// A rectangle of the display [px], top-left origin.
+struct ScreenRect {
+    float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    [[nodiscard]] float width() const { return x1 - x0; }
+    [[nodiscard]] float height() const { return y1 - y0; }
+    [[nodiscard]] float area() const { return width() * height(); }
+};
+
+/// Where the panels dock for a display: a left column (Scene over Run) and a right column (Body over
+/// Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720
+/// display; each panel collapses to its title bar, and Tab hides them all.
+struct PanelLayout {
+    ScreenRect scene, run, body, speed;
+};
+[[nodiscard]] PanelLayout panel_layout(float display_width, float display_height);
+
 class EditorUi
 {
   public:
@@ -64,6 +81,23 @@ class EditorUi
     /// Sets the mouse for the next frame (a windowed host forwards its events here) [pixels].
     void set_mouse(float x, float y, bool left_down);
 
+    /// One frame of the host (input.frame: a window draws and presents one; headless, frame() then
+    /// the 3-D view's mouse action).
+    void host_frame(double real_seconds);
+    /// What the editor does with an event: ImGui's mouse for the next frame and `view_input`. A window's
+    /// GLFW callbacks call these; headless, `input` calls them directly.
+    void on_cursor(double x, double y);
+    void on_button(MouseButton b, bool down);
+    void on_key(EditorKey k, bool down);
+    /// The host's events, as a script sends them. Headless (the default) they call on_*() and frame(); a
+    /// window replaces them while it is open with its GLFW callback chain and its own frames.
+    InputEvents input;
+    /// What the 3-D view does with the mouse and keys.
+    ViewInput view_input;
+    /// The part of the display the 3-D view keeps in the last frame: between the expanded panels of
+    /// the left and right columns (the whole display with the panels hidden).
+    [[nodiscard]] const ScreenRect& viewport() const { return m_viewport; }
+
     /// The display the UI is laid out for [px].
     [[nodiscard]] int width() const { return m_width; }
     [[nodiscard]] int height() const { return m_height; }
@@ -81,14 +115,15 @@ class EditorUi
     /// ImGui::Render (draw the world, then ImGui_ImplOpenGL3_RenderDrawData). Both are empty headless.
     std::function<void()> before_frame;
     std::function<void()> after_render;
-    /// True: frame() feeds the mouse set by set_mouse()/press(). A platform backend that feeds ImGui's
-    /// mouse itself sets this to false (press() still works: it turns it on for its three frames).
+    /// True: frame() feeds ImGui the mouse set by set_mouse()/on_cursor()/on_button() (also in a
+    /// window, whose GLFW callbacks call those). False leaves ImGui's mouse to a platform backend.
     bool synthetic_mouse = true;
     /// The camera of the 3-D view and the mouse: the scene's camera with an absent target or distance
     /// framed once per load or reset (editor_camera() in render_hook.h), so that the view stays put
     /// while bodies move and a pixel means the same ray from frame to frame.
     std::optional<CameraDef> view_camera;
     uint64_t view_generation = 0; ///< The session generation view_camera was framed for.
+    double view_aspect = 0.0;     ///< The 3-D view's width / height view_camera was framed for.
     /// The Speed / accuracy window's values in the last frame.
     SpeedAccuracyReadout speed_accuracy;
     /// Where the Save button writes.
@@ -114,8 +149,15 @@ class EditorUi
     std::string m_last_error;
     int m_width = 1, m_height = 1;
     float m_mouse_x = -1.0f, m_mouse_y = -1.0f;
-    bool m_mouse_down = false;
+    bool m_mouse_down = false, m_mouse_right = false;
+    ScreenRect m_viewport;
+
+    void headless_input();
+    void update_viewport();
 };
+
+/// Places the next ImGui window on its docked rectangle (every frame: the panels do not float).
+void dock_next_window(const ScreenRect& r);
 
 // The windows, one file each (ui_scene_tree.cpp, ui_body.cpp, ui_controls.cpp).
 void draw_scene_tree(EditorUi& ui);

@@ -91,9 +91,9 @@ void draw_dynamics(EditorUi& ui, const std::string& base, const SceneBody& body)
 void draw_body_window(EditorUi& ui)
 {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(display.x - 420, 0), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(420, display.y * 0.55f), ImGuiCond_FirstUseEver);
+    dock_next_window(panel_layout(display.x, display.y).body);
     if (ImGui::Begin("Body")) {
+        ImGui::PushItemWidth(-110.0f); // room for the labels in the narrow column
         EditorSession& session = ui.session();
         const Scene* scene = session.has_world() ? &session.scene() : nullptr;
         size_t index = 0;
@@ -125,6 +125,7 @@ void draw_body_window(EditorUi& ui)
                 draw_dynamics(ui, base, body);
             }
         }
+        ImGui::PopItemWidth();
     }
     ImGui::End();
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 namespace supermodal::editor
 {
@@ -34,12 +35,15 @@ EditorUi::EditorUi(EditorSession& session, int width, int height) : m_session(se
     io.IniFilename = nullptr; // window layout is not saved next to whatever the working folder is
     io.LogFilename = nullptr;
     io.DisplaySize = ImVec2(static_cast<float>(m_width), static_cast<float>(m_height));
+    const PanelLayout docked = panel_layout(io.DisplaySize.x, io.DisplaySize.y);
+    m_viewport = {docked.scene.x1, 0, docked.body.x0, io.DisplaySize.y}; // until a frame says otherwise
     // NewFrame needs a built atlas; a renderer uploads these pixels later, headless runs never do.
     unsigned char* pixels = nullptr;
     int atlas_w = 0, atlas_h = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &atlas_w, &atlas_h);
     ImGui::StyleColorsDark();
     m_mouse_x = m_mouse_y = -FLT_MAX;
+    headless_input();
     if (previous != nullptr)
         ImGui::SetCurrentContext(previous);
 }
@@ -56,6 +60,47 @@ void EditorUi::set_mouse(float x, float y, bool left_down)
     m_mouse_down = left_down;
 }
 
+void EditorUi::headless_input()
+{
+    input.cursor = [this](double x, double y) { on_cursor(x, y); };
+    input.button = [this](MouseButton b, bool down) { on_button(b, down); };
+    input.key = [this](EditorKey k, bool down) { on_key(k, down); };
+    input.frame = [this](double seconds) {
+        frame(seconds);
+        ImGui::SetCurrentContext(m_context);
+        view_input.act(m_session, *this, ImGui::GetIO().WantCaptureMouse);
+    };
+}
+
+void EditorUi::on_cursor(double x, double y)
+{
+    set_mouse(static_cast<float>(x), static_cast<float>(y), m_mouse_down);
+    view_input.cursor(x, y);
+}
+
+void EditorUi::on_button(MouseButton b, bool down)
+{
+    if (b == MouseButton::Left)
+        m_mouse_down = down;
+    else
+        m_mouse_right = down;
+    view_input.button(b, down);
+}
+
+void EditorUi::on_key(EditorKey k, bool down)
+{
+    if (down)
+        view_input.key(k, *this);
+}
+
+void EditorUi::host_frame(double real_seconds)
+{
+    if (input.frame)
+        input.frame(real_seconds);
+    else
+        frame(real_seconds);
+}
+
 void EditorUi::frame(double real_seconds)
 {
     ImGui::SetCurrentContext(m_context);
@@ -66,6 +111,7 @@ void EditorUi::frame(double real_seconds)
     if (synthetic_mouse) {
         io.MousePos = ImVec2(m_mouse_x, m_mouse_y);
         io.MouseDown[0] = m_mouse_down;
+        io.MouseDown[1] = m_mouse_right;
     }
     m_widgets.clear();
     ImGui::NewFrame();
@@ -76,6 +122,7 @@ void EditorUi::frame(double real_seconds)
         draw_controls(*this);
         draw_speed_accuracy(*this);
     }
+    update_viewport();
     ImGui::Render();
     if (after_render)
         after_render();
@@ -113,17 +160,18 @@ Status EditorUi::press(const std::string& label)
     }
     const float x = 0.5f * (found[0]->min_x + found[0]->max_x),
                 y = 0.5f * (found[0]->min_y + found[0]->max_y);
+    // Hover, press, release through the host's events (a window's GLFW callbacks): ImGui buttons fire
+    // on the release over the item they were pressed on. Zero seconds per frame, so a running
+    // simulation does not move while the mouse works.
     const bool was_synthetic = synthetic_mouse;
     synthetic_mouse = true;
-    // Hover, press, release: ImGui buttons fire on the release over the item they were pressed on.
-    // Zero seconds per frame, so a running simulation does not move while the mouse works.
-    set_mouse(x, y, false);
-    frame(0.0);
-    set_mouse(x, y, true);
-    frame(0.0);
-    set_mouse(x, y, false);
-    frame(0.0);
-    set_mouse(-FLT_MAX, -FLT_MAX, false);
+    input.cursor(x, y);
+    host_frame(0.0);
+    input.button(MouseButton::Left, true);
+    host_frame(0.0);
+    input.button(MouseButton::Left, false);
+    host_frame(0.0);
+    input.cursor(-FLT_MAX, -FLT_MAX);
     synthetic_mouse = was_synthetic;
     return {};
 }
@@ -136,6 +184,52 @@ void EditorUi::report(const Status& status)
 void EditorUi::apply(const std::string& path, const Json& value)
 {
     report(m_session.set(path, value));
+}
+
+} // namespace supermodal::editor
+
+namespace supermodal::editor
+{
+
+PanelLayout panel_layout(float w, float h)
+{
+    // Columns a sixth and a fifth of the width, within what their widgets need: 211 + 269 px at 1280,
+    // which leaves the view 800 px of 1280 (62.5%). Run is as tall as its widgets.
+    const float left = std::clamp(0.165f * w, 180.0f, 300.0f);
+    const float right = std::clamp(0.21f * w, 240.0f, 420.0f);
+    const float run = std::min(150.0f, 0.4f * h);
+    const float body = 0.55f * h;
+    PanelLayout l;
+    l.scene = {0, 0, left, h - run};
+    l.run = {0, h - run, left, h};
+    l.body = {w - right, 0, w, body};
+    l.speed = {w - right, body, w, h};
+    return l;
+}
+
+void dock_next_window(const ScreenRect& r)
+{
+    ImGui::SetNextWindowPos(ImVec2(r.x0, r.y0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(r.width(), r.height()), ImGuiCond_Always);
+}
+
+void EditorUi::update_viewport()
+{
+    const float w = static_cast<float>(m_width), h = static_cast<float>(m_height);
+    m_viewport = {0, 0, w, h};
+    if (!show_windows)
+        return;
+    // Each expanded panel closes the view in from its side; a collapsed one is a title bar over it.
+    for (const char* name : {"Scene", "Run", "Body", "Speed / accuracy"}) {
+        const ImGuiWindow* win = ImGui::FindWindowByName(name);
+        if (win == nullptr || !win->Active || win->Collapsed)
+            continue;
+        if (win->Pos.x + 0.5f * win->Size.x < 0.5f * w)
+            m_viewport.x0 = std::max(m_viewport.x0, std::min(win->Pos.x + win->Size.x, w));
+        else
+            m_viewport.x1 = std::min(m_viewport.x1, std::max(win->Pos.x, 0.0f));
+    }
+    m_viewport.x1 = std::max(m_viewport.x1, m_viewport.x0);
 }
 
 } // namespace supermodal::editor

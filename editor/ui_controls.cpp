@@ -29,7 +29,7 @@ template <class... Args> void line(SpeedAccuracyReadout& r, const char* format, 
 {
     char text[256];
     std::snprintf(text, sizeof text, format, args...);
-    ImGui::TextUnformatted(text);
+    ImGui::TextWrapped("%s", text); // the column is narrow: long readouts wrap instead of being cut
     r.lines.emplace_back(text);
 }
 
@@ -116,8 +116,7 @@ void draw_modal_readout(EditorUi& ui)
 void draw_controls(EditorUi& ui)
 {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(310, 0), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(display.x - 740, 150), ImGuiCond_FirstUseEver);
+    dock_next_window(panel_layout(display.x, display.y).run);
     if (ImGui::Begin("Run")) {
         EditorSession& s = ui.session();
         if (button(ui, "Play"))
@@ -128,7 +127,6 @@ void draw_controls(EditorUi& ui)
         ImGui::SameLine();
         if (button(ui, "Step"))
             s.step(ui.step_count);
-        ImGui::SameLine();
         if (button(ui, "Reset"))
             ui.report(s.reset());
         ImGui::SameLine();
@@ -151,8 +149,7 @@ void draw_speed_accuracy(EditorUi& ui)
 {
     ui.speed_accuracy = SpeedAccuracyReadout{};
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(display.x - 420, display.y * 0.55f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(420, display.y * 0.45f), ImGuiCond_FirstUseEver);
+    dock_next_window(panel_layout(display.x, display.y).speed);
     if (ImGui::Begin("Speed / accuracy")) {
         EditorSession& s = ui.session();
         if (!s.has_world()) {
@@ -161,12 +158,14 @@ void draw_speed_accuracy(EditorUi& ui)
             return;
         }
         ui.speed_accuracy.shown = true;
+        ImGui::PushItemWidth(-110.0f); // room for the labels in the narrow column
         // A copy: an applied edit replaces the session's scene and world while this window is drawn.
         const WorldDef w = s.scene().world;
         draw_speed_knobs(ui, w);
         ImGui::Separator();
         draw_cost_readout(ui, w);
         draw_modal_readout(ui);
+        ImGui::PopItemWidth();
     }
     ImGui::End();
 }

@@ -49,8 +49,7 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
 
 void draw_scene_tree(EditorUi& ui)
 {
-    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(300, ImGui::GetIO().DisplaySize.y), ImGuiCond_FirstUseEver);
+    dock_next_window(panel_layout(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y).scene);
     if (ImGui::Begin("Scene")) {
         EditorSession& session = ui.session();
         if (!session.has_world()) {

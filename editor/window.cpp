@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // GLFW host of the editor. The 3-D view comes from the offscreen renderer (its own surfaceless EGL
-// context) as an image, is uploaded into the window's context and blitted behind ImGui's windows. Left
-// mouse on a body (outside the ImGui windows) selects it and drags it with the spring; right mouse
-// moulds a modal body 5 mm deep. Built only with GLFW and the renderer; not testable without a display.
+// context) as an image, is uploaded into the window's context and blitted behind ImGui's windows. The
+// mouse and keys go through the editor's GLFW callbacks (input.h says what they do); a script runs
+// inside the window and sends its events through the same callbacks. Built only with GLFW and the
+// renderer; tested under Xvfb (tests/editor/window_test.cpp).
 #include "window.h"
 
 #include <algorithm>
@@ -11,9 +12,13 @@
 
 #if defined(SUPERMODAL_EDITOR_HAS_WINDOW) && defined(SUPERMODAL_EDITOR_HAS_RENDER)
 #include "render_hook.h"
+#include "script.h"
 #include "supermodal/render.h"
 
 #include <GLES3/gl3.h>
+#include <array>
+#include <iostream>
+#include <utility>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -34,10 +39,6 @@ bool display_available()
 #if defined(SUPERMODAL_EDITOR_HAS_WINDOW) && defined(SUPERMODAL_EDITOR_HAS_RENDER)
 namespace
 {
-
-// Moulding depth of a right click [m] and its duration [steps].
-constexpr double k_mould_depth = 0.005;
-constexpr int k_mould_steps = 200;
 
 /// The 3-D view as a texture of the window's context, blitted to the window's framebuffer.
 struct ViewTexture {
@@ -75,45 +76,141 @@ struct ViewTexture {
     }
 };
 
-void handle_mouse(GLFWwindow* window, EditorSession& session, EditorUi& ui, bool& dragging,
-                  bool& right_was_down)
+/// GLFW's keys for the editor's.
+constexpr std::pair<int, EditorKey> k_glfw_keys[] = {
+    {GLFW_KEY_TAB, EditorKey::Tab},
+    {GLFW_KEY_SPACE, EditorKey::Space},
+    {GLFW_KEY_ESCAPE, EditorKey::Escape},
+    {GLFW_KEY_ENTER, EditorKey::Enter},
+    {GLFW_KEY_BACKSPACE, EditorKey::Backspace},
+    {GLFW_KEY_LEFT, EditorKey::Left},
+    {GLFW_KEY_RIGHT, EditorKey::Right},
+    {GLFW_KEY_UP, EditorKey::Up},
+    {GLFW_KEY_DOWN, EditorKey::Down},
+};
+
+/// The open window: its context, the view's texture, and one frame of its loop.
+struct WindowHost {
+    GLFWwindow* window = nullptr;
+    Renderer& renderer;
+    EditorSession& session;
+    EditorUi& ui;
+    std::unique_ptr<ViewTexture> view = std::make_unique<ViewTexture>();
+    Image image;
+
+    [[nodiscard]] int image_width() const { return renderer.settings().width; }
+    [[nodiscard]] int image_height() const { return renderer.settings().height; }
+
+    /// Window coordinates [screen units] to the UI's pixels (they differ on HiDPI or after a resize).
+    [[nodiscard]] std::array<double, 2> to_ui(double x, double y) const
+    {
+        int ww = 1, wh = 1;
+        glfwGetWindowSize(window, &ww, &wh);
+        return {x * ui.width() / std::max(ww, 1), y * ui.height() / std::max(wh, 1)};
+    }
+    [[nodiscard]] std::array<double, 2> from_ui(double x, double y) const
+    {
+        int ww = 1, wh = 1;
+        glfwGetWindowSize(window, &ww, &wh);
+        return {x * std::max(ww, 1) / ui.width(), y * std::max(wh, 1) / ui.height()};
+    }
+
+    /// One frame: events, the 3-D view rendered offscreen and uploaded, the UI over it, the mouse's
+    /// action in the view; `capture` gets the window's framebuffer before it is shown.
+    void frame(double seconds, Image* capture = nullptr)
+    {
+        glfwPollEvents();
+        if (session.has_world()) {
+            apply_scene_looks(renderer, session.scene(), session.world());
+            // Only a failure is reported: a success would clear the error of a widget's action.
+            if (Status drawn = renderer.render(session.world(), editor_camera(session, ui), image,
+                                               PoseSource::Interpolated, {},
+                                               view_rect(ui, image_width(), image_height()));
+                !drawn)
+                ui.report(drawn);
+        }
+        glfwMakeContextCurrent(window); // the renderer made its own context current
+        if (!image.rgba.empty())
+            view->upload(image);
+        ui.frame(seconds);
+        ImGui::SetCurrentContext(ui.context());
+        ui.view_input.act(session, ui, ImGui::GetIO().WantCaptureMouse);
+        if (capture != nullptr)
+            read_window(*capture);
+        glfwSwapBuffers(window);
+    }
+
+    void read_window(Image& out) const
+    {
+        int fw = 1, fh = 1;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        out.width = fw;
+        out.height = fh;
+        out.rgba.resize(static_cast<size_t>(fw) * static_cast<size_t>(fh) * 4);
+        glReadPixels(0, 0, fw, fh, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+        const size_t row = static_cast<size_t>(fw) * 4; // GL's first row is the bottom one
+        for (int y = 0; y < fh / 2; ++y)
+            std::swap_ranges(out.rgba.begin() + static_cast<long>(y * row),
+                             out.rgba.begin() + static_cast<long>((y + 1) * row),
+                             out.rgba.begin() + static_cast<long>((fh - 1 - y) * row));
+        for (size_t i = 3; i < out.rgba.size(); i += 4)
+            out.rgba[i] = 255; // the window is opaque whatever alpha its framebuffer kept
+    }
+};
+
+WindowHost& host_of(GLFWwindow* window)
 {
-    const ImGuiIO& io = ImGui::GetIO();
-    double cx = 0, cy = 0;
-    glfwGetCursorPos(window, &cx, &cy);
-    int ww = 1, wh = 1;
-    glfwGetWindowSize(window, &ww, &wh);
-    const double x = cx * ui.width() / std::max(ww, 1), y = cy * ui.height() / std::max(wh, 1);
-    const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool right_down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    const bool right = right_down && !right_was_down; // one finger per press, not one per frame
-    right_was_down = right_down;
-    Result<Ray> ray = screen_ray(session, ui, x, y);
-    if (!ray)
+    return *static_cast<WindowHost*>(glfwGetWindowUserPointer(window));
+}
+
+// The editor's GLFW callbacks, installed before ImGui's: ImGui's button and key callbacks call these
+// after their own work, and a script's events enter the same chain.
+void on_cursor(GLFWwindow* window, double x, double y)
+{
+    WindowHost& h = host_of(window);
+    const auto [ux, uy] = h.to_ui(x, y);
+    h.ui.on_cursor(ux, uy);
+}
+
+void on_button(GLFWwindow* window, int button, int action, int /*mods*/)
+{
+    if (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT)
+        host_of(window).ui.on_button(
+            button == GLFW_MOUSE_BUTTON_LEFT ? MouseButton::Left : MouseButton::Right, action == GLFW_PRESS);
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/)
+{
+    if (action == GLFW_REPEAT)
         return;
-    if (dragging) {
-        if (!left) {
-            session.drag_end();
-            dragging = false;
-            return;
-        }
-        // The grabbed point follows the mouse in the plane through it that faces the camera.
-        const DragSpring& d = *session.drag();
-        const Vec3 n = normalized(ray->direction);
-        const double t = dot(d.target - ray->origin, n);
-        session.drag_to(ray->origin + t * n);
-        return;
-    }
-    if (io.WantCaptureMouse)
-        return;
-    if (left) {
-        if (const std::optional<PickHit> hit = session.pick(*ray)) {
-            ui.select_body(hit->name);
-            dragging = session.drag_begin(*ray).ok();
-        }
-    } else if (right) {
-        ui.report(session.mould(*ray, k_mould_depth, k_mould_steps));
-    }
+    for (const auto& [glfw, k] : k_glfw_keys)
+        if (glfw == key)
+            host_of(window).ui.on_key(k, action == GLFW_PRESS);
+}
+
+/// A script's events, sent through the window's callback chain as GLFW would send them.
+InputEvents window_events(WindowHost& h)
+{
+    InputEvents e;
+    e.cursor = [&h](double x, double y) {
+        const auto [wx, wy] = h.from_ui(x, y);
+        ImGui_ImplGlfw_CursorEnterCallback(h.window, GLFW_TRUE); // the pointer is inside the window
+        on_cursor(h.window, wx, wy);
+    };
+    e.button = [&h](MouseButton b, bool down) {
+        ImGui_ImplGlfw_MouseButtonCallback(
+            h.window, b == MouseButton::Left ? GLFW_MOUSE_BUTTON_LEFT : GLFW_MOUSE_BUTTON_RIGHT,
+            down ? GLFW_PRESS : GLFW_RELEASE, 0);
+    };
+    e.key = [&h](EditorKey k, bool down) {
+        for (const auto& [glfw, key] : k_glfw_keys)
+            if (key == k)
+                ImGui_ImplGlfw_KeyCallback(h.window, glfw, 0, down ? GLFW_PRESS : GLFW_RELEASE, 0);
+    };
+    e.frame = [&h](double seconds) { h.frame(seconds); };
+    return e;
 }
 
 // Starts GLFW and opens an OpenGL ES 3.0 window through EGL; null, with `why` filled in, when it cannot.
@@ -139,19 +236,52 @@ GLFWwindow* open_window(EditorUi& ui, WindowUnavailable& why)
     return window;
 }
 
-// The window's loop until it is closed: the scene rendered offscreen, shown behind ImGui's windows,
-// and the mouse. ImGui's GLFW and GL back ends live as long as the loop.
-void window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, EditorUi& ui)
+// The script (if any) through the window, the screenshot of its framebuffer (if asked), then the
+// interactive loop until the window is closed (unless a screenshot was asked for). The exit status.
+int window_session(WindowHost& h, const WindowRun& run)
+{
+    int status = 0;
+    if (!run.script.empty()) {
+        const ScriptOutcome outcome = run_script_file(run.script, h.session, h.ui, *run.log);
+        if (outcome.failure != ScriptFailure::None) {
+            std::cerr << outcome.error.message() << "\n";
+            return outcome.failure == ScriptFailure::CheckFailed ? 1 : 2;
+        }
+    }
+    if (!run.screenshot.empty()) {
+        Image shot;
+        h.frame(0.0, &shot);
+        if (Status s = write_png(run.screenshot, shot); !s) {
+            std::cerr << s.error().message() << "\n";
+            status = 2;
+        }
+        return status;
+    }
+    double last = glfwGetTime();
+    while (!glfwWindowShouldClose(h.window)) {
+        const double now = glfwGetTime();
+        h.frame(now - last);
+        last = now;
+    }
+    return status;
+}
+
+// ImGui's GLFW and GL back ends, the editor's callbacks and the script's events live as long as this.
+int window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, EditorUi& ui,
+                const WindowRun& run)
 {
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
+    WindowHost host{window, renderer, session, ui, std::make_unique<ViewTexture>(), Image{}};
+    glfwSetWindowUserPointer(window, &host);
+    glfwSetCursorPosCallback(window, on_cursor);
+    glfwSetMouseButtonCallback(window, on_button);
+    glfwSetKeyCallback(window, on_key);
     ImGui::SetCurrentContext(ui.context());
-    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplGlfw_InitForOpenGL(window, true); // chains to the callbacks above
     ImGui_ImplOpenGL3_Init("#version 300 es");
-    ui.synthetic_mouse = false;
-    auto view = std::make_unique<ViewTexture>(); // its GL objects go before the context does
-    Image image;
-    bool dragging = false, right_was_down = false;
+    const InputEvents headless = ui.input;
+    ui.input = window_events(host);
     ui.before_frame = [] {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -160,36 +290,23 @@ void window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session,
         int fw = 1, fh = 1;
         glfwGetFramebufferSize(window, &fw, &fh);
         glViewport(0, 0, fw, fh);
-        view->blit(fw, fh);
+        host.view->blit(fw, fh);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     };
-    double last = glfwGetTime();
-    while (!glfwWindowShouldClose(window)) {
-        glfwPollEvents();
-        if (session.has_world()) {
-            apply_scene_looks(renderer, session.scene(), session.world());
-            ui.report(renderer.render(session.world(), editor_camera(session, ui), image,
-                                      PoseSource::Interpolated));
-        }
-        glfwMakeContextCurrent(window); // the renderer made its own context current
-        if (!image.rgba.empty())
-            view->upload(image);
-        handle_mouse(window, session, ui, dragging, right_was_down);
-        const double now = glfwGetTime();
-        ui.frame(now - last);
-        last = now;
-        glfwSwapBuffers(window);
-    }
+    const int status = window_session(host, run);
     ui.before_frame = nullptr;
     ui.after_render = nullptr;
-    view.reset();
+    ui.input = headless;
+    host.view.reset(); // its GL objects go before the context does
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
+    glfwSetWindowUserPointer(window, nullptr);
+    return status;
 }
 
 } // namespace
 
-int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
+int run_window(EditorSession& session, EditorUi& ui, const WindowRun& run, WindowUnavailable& why)
 {
     GLFWwindow* window = open_window(ui, why);
     if (window == nullptr)
@@ -204,13 +321,13 @@ int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why)
         why.message = renderer.error().message();
         return 2;
     }
-    window_loop(window, *renderer, session, ui);
+    const int status = window_loop(window, *renderer, session, ui, run);
     glfwDestroyWindow(window);
     glfwTerminate();
-    return 0;
+    return status;
 }
 #else
-int run_window(EditorSession&, EditorUi&, WindowUnavailable& why)
+int run_window(EditorSession&, EditorUi&, const WindowRun&, WindowUnavailable& why)
 {
     why.message = display_available() ? "this build has no window support (GLFW and the renderer)"
                                       : "no display ($DISPLAY and $WAYLAND_DISPLAY are unset)";

@@ -6,6 +6,9 @@
 #include "session.h"
 #include "ui.h"
 
+#include <ostream>
+#include <string>
+
 namespace supermodal::editor
 {
 
@@ -17,8 +20,16 @@ struct WindowUnavailable {
 /// True when a display is there to open a window on ($DISPLAY or $WAYLAND_DISPLAY set).
 [[nodiscard]] bool display_available();
 
-/// Opens a window of the UI's size and runs until it is closed; returns the exit status (0), or fills
-/// `why` and returns 2 when no window could be opened (no display, no GLFW, no GL ES 3 context).
-int run_window(EditorSession& session, EditorUi& ui, WindowUnavailable& why);
+/// What to do in the window besides letting the user work.
+struct WindowRun {
+    std::string script;          ///< Actions run in the window first, their events through its callbacks.
+    std::string screenshot;      ///< After the script: the window's framebuffer as a PNG, then close.
+    std::ostream* log = nullptr; ///< The script's per-action lines.
+};
+
+/// Opens a window of the UI's size, runs `run`, and then (without a screenshot) runs until it is closed.
+/// The exit status: 0, 1 when a script's check failed, 2 for a bad script or screenshot; or 2 with
+/// `why` filled in when no window could be opened (no display, no GLFW, no GL ES 3 context).
+int run_window(EditorSession& session, EditorUi& ui, const WindowRun& run, WindowUnavailable& why);
 
 } // namespace supermodal::editor

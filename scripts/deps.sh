@@ -14,11 +14,15 @@ packages=(
   libassimp-dev        # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
   libgtest-dev         # tests
   python3 python3-jsonschema   # tests/schema: the scene schema against the loader
+  pybind11-dev python3-dev    # python/: the module supermodal (SUPERMODAL_PYTHON)
+  python3-numpy python3-pytest  # python/: its arrays, and tests/python
   libbenchmark-dev     # bench/
   gnuplot-nox          # `supermodal bench --out`: the speed/accuracy plot (PREFIX.png; skipped without it)
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)
   libglfw3-dev         # editor/: the window of the interactive editor
-  libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image_write (PNG)
+  libegl-dev libgles-dev libstb-dev   # render/: EGL + OpenGL ES 3.0 headers, stb_image (reading PNG)
+  libspng-dev          # render/: PNG encoding (frame capture, screenshots)
+  xvfb xauth           # tests/editor: the editor's window under a virtual X server (xvfb-run)
   libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri  # at run time: Mesa's EGL (surfaceless) and llvmpipe
   "$@"
 )

@@ -12,6 +12,7 @@ build=${SUPERMODAL_SHARED_BUILD_DIR:-build-shared}
 # info, no unit tests, benchmarks or editor (test.sh covers those on the static libraries).
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_CXX_FLAGS_DEBUG="-O0" -DCMAKE_C_FLAGS_DEBUG="-O0" -DSUPERMODAL_SHARED=ON \
-  -DSUPERMODAL_WERROR=ON -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=OFF -DSUPERMODAL_EDITOR=OFF >/dev/null
+  -DSUPERMODAL_WERROR=ON -DSUPERMODAL_TESTS=ON -DSUPERMODAL_BENCH=OFF -DSUPERMODAL_EDITOR=OFF \
+  -DSUPERMODAL_PYTHON=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target supermodal supermodal_c
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 600 -R '^(Install|Api)\.'

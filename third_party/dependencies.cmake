@@ -8,10 +8,11 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(CCD REQUIRED IMPORTED_TARGET ccd)  # contact: MPR penetration (libccd, double build)
 find_package(assimp 5.2 CONFIG REQUIRED)  # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
 if(SUPERMODAL_RENDER)
-  # render: headless EGL (Mesa surfaceless platform) + OpenGL ES 3.0, PNG via stb_image_write.
+  # render: headless EGL (Mesa surfaceless platform) + OpenGL ES 3.0, PNG written by libspng, read by stb.
   pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)        # libegl-dev (+ libegl-mesa0 at run time)
   pkg_check_modules(GLESV2 REQUIRED IMPORTED_TARGET glesv2)  # libgles-dev (+ libgl1-mesa-dri: llvmpipe)
   pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)        # libstb-dev
+  pkg_check_modules(SPNG REQUIRED IMPORTED_TARGET spng)      # libspng-dev
 endif()
 if(SUPERMODAL_TESTS)
   find_package(GTest CONFIG REQUIRED)

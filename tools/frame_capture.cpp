@@ -5,12 +5,14 @@
 #include "supermodal/render.h"
 #include "supermodal/world.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -39,6 +41,16 @@ bool parse_size(const std::string& text, int& w, int& h)
     w = static_cast<int>(a);
     h = static_cast<int>(b);
     return true;
+}
+
+// The PNGs are encoded off the render loop. On two cores one thread gained nothing measurable and two
+// cost more CPU (docs/rendering.md); one per four cores leaves llvmpipe its rasterising threads.
+PngWriterDef png_writer_def()
+{
+    PngWriterDef def;
+    def.threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()) / 4, 1, 4);
+    def.queue = 2;
+    return def;
 }
 
 // Single-quoted for /bin/sh.
@@ -76,6 +88,7 @@ bool on_path(const std::string& name)
 struct FrameCapture::Impl {
     CaptureOptions options;
     std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<PngWriter> png; ///< Encodes frame N while frame N + 1 renders.
     CameraDef camera;
     FILE* ffmpeg = nullptr;
     Image image;
@@ -121,6 +134,12 @@ Result<std::unique_ptr<FrameCapture>> FrameCapture::open(const CaptureOptions& o
         if (!dir.empty() && !std::filesystem::is_directory(dir))
             return bad("--video", o.video + ": directory " + dir.string() + " does not exist");
     }
+    if (!o.frames_dir.empty()) {
+        Result<std::unique_ptr<PngWriter>> png = PngWriter::create(png_writer_def());
+        if (!png)
+            return Error{"", "--frames", "cannot start the PNG writer: " + png.error().message()};
+        impl->png = std::move(*png);
+    }
     RenderDef def = default_render_def();
     def.width = impl->width;
     def.height = impl->height;
@@ -158,15 +177,16 @@ Status FrameCapture::maybe_capture(const World& world, long long step)
     if (Status s = m.renderer->render(world, m.camera, m.image); !s)
         return s;
     const auto t1 = Clock::now();
-    if (!m.options.frames_dir.empty()) {
-        char name[64];
-        std::snprintf(name, sizeof name, "/frame_%06lld.png", m.frames);
-        if (Status s = write_png(m.options.frames_dir + name, m.image); !s)
-            return s;
-    }
     if (m.ffmpeg != nullptr &&
         std::fwrite(m.image.rgba.data(), 1, m.image.rgba.size(), m.ffmpeg) != m.image.rgba.size())
         return Error{"", "--video", "ffmpeg stopped reading frames"};
+    if (m.png) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/frame_%06lld.png", m.frames);
+        // The writer takes the pixels; the next render() fills a fresh buffer.
+        if (Status s = m.png->submit(m.options.frames_dir + name, std::move(m.image)); !s)
+            return s;
+    }
     m.render_s += std::chrono::duration<double>(t1 - t0).count();
     m.encode_s += std::chrono::duration<double>(Clock::now() - t1).count();
     ++m.frames;
@@ -176,6 +196,9 @@ Status FrameCapture::maybe_capture(const World& world, long long step)
 Status FrameCapture::finish()
 {
     Impl& m = *m_impl;
+    if (m.png)
+        if (Status s = m.png->finish(); !s)
+            return s;
     if (m.ffmpeg == nullptr)
         return {};
     const int raw = ::pclose(m.ffmpeg);
@@ -196,6 +219,7 @@ nlohmann::json FrameCapture::summary() const
             {"frames_dir", m.options.frames_dir},
             {"video", m.options.video},
             {"device", m.renderer->device_name()},
+            {"png_threads", m.png ? png_writer_def().threads : 0},
             {"render_ms_mean", 1e3 * m.render_s / n},
             {"write_ms_mean", 1e3 * m.encode_s / n}};
 }

@@ -39,9 +39,11 @@ class FrameCapture
 
     /// Renders and writes the frame of step `step` if it is one of the every-K steps.
     Status maybe_capture(const World& world, long long step);
-    /// Closes the video pipe and checks that ffmpeg succeeded.
+    /// Waits for the PNG files still being encoded, closes the video pipe and checks that ffmpeg
+    /// succeeded; the first error of either.
     Status finish();
-    /// {"frames", "size", "every", "render_ms_mean", "encode_ms_mean", ...} for the run summary.
+    /// {"frames", "size", "every", "render_ms_mean", "write_ms_mean" (time the run waited for the PNG
+    /// writer or ffmpeg), ...} for the run summary.
     [[nodiscard]] nlohmann::json summary() const;
 
     struct Impl;

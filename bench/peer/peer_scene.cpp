@@ -153,6 +153,8 @@ std::string apply_contact_setting(sm::ContactDef& def, std::string_view key_valu
         return parse_number(value, def.soft.frequency_hz);
     if (key == "soft.iterations")
         return parse_number(value, def.soft.iterations);
+    if (key == "soft.substeps")
+        return parse_number(value, def.soft.substeps);
     return "unknown contact setting '" + std::string(key) + "'";
 }
 

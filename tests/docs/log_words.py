@@ -4,7 +4,7 @@
 
   log_words.py check --source DIR     fails naming FILE:LINE for every work-log phrase in docs/,
                                       README.md and the comments of engine/, editor/, tools/, bench/,
-                                      samples/, scripts/ and tests/
+                                      samples/, scripts/, tests/ and python/
   log_words.py selftest               the check fails on a planted line and names its file and line
   log_words.py changelog --source DIR --version X.Y.Z
                                       CHANGELOG.md's newest version heading is the project's version
@@ -39,7 +39,7 @@ HISTORY_HEADING = (r"^#+ .*\bhistory\b", "a history section")
 PROSE = {".md"}
 CODE_COMMENT = {".cpp", ".h", ".c", ".hpp", ".mjs", ".js", ".in"}
 HASH_COMMENT = {".py", ".sh", ".cmake", ".txt"}
-DIRS = ["docs", "engine", "editor", "tools", "bench", "samples", "scripts", "tests"]
+DIRS = ["docs", "engine", "editor", "tools", "bench", "samples", "scripts", "tests", "python"]
 # Recorded inputs are kept byte for byte (fuzz corpora and regressions); this checker names the words.
 SKIP = [re.compile(p) for p in (r"^tests/fuzz/(corpus|regressions|mesh_regressions|cli_regressions|cli_corpus)/",
                                  r"^tests/docs/", r"/__pycache__/", r"\.svg$")]

@@ -81,7 +81,7 @@ TEST(EditorMould, ScriptPushWithADepthAtAPixelMouldsTheClay)
     // The middle of the top face, where the view camera shows it.
     const sm::Entity body = sm::find_body(s.world(), "clay");
     const sm::Vec3 top = sm::body_deformed_point(s.world(), body, {0, 0.05, 0});
-    const auto px = sm::project_to_pixel(s.world(), ed::editor_camera(s, ui), ui.width(), ui.height(), top);
+    const auto px = ed::screen_pixel(s, ui, top);
     ASSERT_TRUE(px);
     const std::string at = R"("x": )" + std::to_string((*px)[0]) + R"(, "y": )" + std::to_string((*px)[1]);
     // Both a force and a depth: refused.

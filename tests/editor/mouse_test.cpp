@@ -20,7 +20,7 @@ const std::string k_board = std::string(SM_SOURCE_DIR) + "/samples/ball_on_board
 
 std::array<double, 2> pixel_of(const ed::EditorSession& s, ed::EditorUi& ui, const sm::Vec3& p)
 {
-    const auto px = sm::project_to_pixel(s.world(), ed::editor_camera(s, ui), ui.width(), ui.height(), p);
+    const auto px = ed::screen_pixel(s, ui, p);
     EXPECT_TRUE(px.has_value());
     return px.value_or(std::array<double, 2>{-1, -1});
 }
@@ -59,8 +59,8 @@ TEST(EditorMouse, TheRayThroughABodysProjectedCentrePassesThroughItAndPicksIt)
             ASSERT_TRUE(hit.has_value()) << name;
             EXPECT_EQ(hit->name, name);
         }
-        // The top-left corner looks over the bodies: nothing there but (far away) the floor.
-        const std::optional<ed::PickHit> corner = s.pick(*ed::screen_ray(s, ui, 1, 1));
+        // The view's top-left corner looks over the bodies: nothing there but (far away) the floor.
+        const std::optional<ed::PickHit> corner = s.pick(*ed::screen_ray(s, ui, ui.viewport().x0 + 1, 1));
         EXPECT_TRUE(!corner || corner->name == "floor") << corner->name;
     }
 }

@@ -64,6 +64,12 @@ TEST(EditorScreenshot, WindowsAreDrawnOverTheViewAndHiddenWindowsLeaveThePlainVi
                            std::min(k_height, int(w->Pos.y + w->Size.y))});
     }
 
+    // The camera and rectangle of the 3-D view between the panels.
+    const sm::CameraDef camera_with = ed::editor_camera(session, ui);
+    const sm::PixelRect rect_with = ed::view_rect(ui, k_width, k_height);
+    EXPECT_EQ(rect_with.width, 800); // between the 211 px and 269 px columns
+    EXPECT_EQ(rect_with.height, k_height);
+
     ui.show_windows = false;
     ui.frame(0.0);
     sm::Result<sm::Image> hidden = ed::render_editor_image(session, ui, k_width, k_height);
@@ -82,6 +88,9 @@ TEST(EditorScreenshot, WindowsAreDrawnOverTheViewAndHiddenWindowsLeaveThePlainVi
     sm::Image plain;
     ASSERT_TRUE(renderer->render(session.world(), ed::editor_camera(session, ui), plain,
                                  sm::PoseSource::Interpolated));
+    sm::Image plain_with; // the view as drawn between the panels, nothing over it
+    ASSERT_TRUE(renderer->render(session.world(), camera_with, plain_with, sm::PoseSource::Interpolated, {},
+                                 rect_with));
 
     // Hidden windows: the same GL calls on the same deterministic driver, so the same bytes (tolerance 0).
     const Rect all{0, 0, k_width, k_height};
@@ -93,7 +102,7 @@ TEST(EditorScreenshot, WindowsAreDrawnOverTheViewAndHiddenWindowsLeaveThePlainVi
         ASSERT_GT(r.y1 - r.y0, 50) << k;
         // A window's 94%-opaque dark background over the light 3-D view: nearly every pixel changes by far
         // more than 16 levels (rounding and anti-aliasing change a few levels at most).
-        EXPECT_GT(differing_fraction(*with, plain, r, 16), 0.9) << "window " << k;
+        EXPECT_GT(differing_fraction(*with, plain_with, r, 16), 0.9) << "window " << k;
         // Its text was drawn from the uploaded font atlas: near-white pixels (the dark style's text is
         // white; the background under it is ≤ 30 levels). Without the atlas the glyphs would not show.
         int bright = 0;
@@ -114,8 +123,9 @@ TEST(EditorScreenshot, WindowsAreDrawnOverTheViewAndHiddenWindowsLeaveThePlainVi
             if (near_window)
                 continue;
             const size_t i = (static_cast<size_t>(y) * k_width + x) * 4;
-            outside_differ += with->rgba[i] != plain.rgba[i] || with->rgba[i + 1] != plain.rgba[i + 1] ||
-                              with->rgba[i + 2] != plain.rgba[i + 2];
+            outside_differ += with->rgba[i] != plain_with.rgba[i] ||
+                              with->rgba[i + 1] != plain_with.rgba[i + 1] ||
+                              with->rgba[i + 2] != plain_with.rgba[i + 2];
         }
     EXPECT_EQ(outside_differ, 0);
 }

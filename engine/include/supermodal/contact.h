@@ -55,6 +55,10 @@ struct SoftContactDef {
     int iterations = 10; ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
                          ///< joints join them (max with WorldDef::constraint_iterations), and as many
                          ///< relax passes follow the position update. More holds taller stacks.
+    int substeps = 1;    ///< Solver substeps per narrowphase [-], in [1, 64]: the contact points found once
+                         ///< are solved this many times over shorter substeps, their gaps carried by the
+                         ///< bodies' motion (Box2D v3's soft step). Cheaper than WorldDef::substep_count,
+                         ///< which runs the narrowphase every substep.
 };
 
 /// World-wide contact settings. Start from the defaults and change what differs.

@@ -63,6 +63,12 @@ enum class PoseSource : uint8_t {
     Interpolated, ///< Blended between the last two steps by World::interpolation_alpha() (advance()).
 };
 
+/// A rectangle of an image [px]: left and top edges, counted from the top-left corner, and its size.
+struct PixelRect {
+    int x = 0, y = 0;
+    int width = 0, height = 0; ///< 0 × 0: the whole image.
+};
+
 /// The camera a frame uses: `camera` with an absent target or a zero distance filled in so that every
 /// non-plane body's world box fits in the view (a margin of 10%). Yaw, pitch and fov are kept.
 [[nodiscard]] SM_API CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect);
@@ -95,8 +101,11 @@ class SM_API Renderer
     /// As render(), then `overlay()` runs with this renderer's GL ES 3.0 context current and its
     /// framebuffer bound (viewport = the image), after the scene and before the read-back: a host draws
     /// its UI over the frame (the editor draws its ImGui windows through ImGui's OpenGL ES 3 backend).
+    /// A non-empty `view` draws the scene into that rectangle only, framed for its aspect (the rest is
+    /// RenderDef::sky_bottom): a host whose panels cover the image's sides keeps the scene between them.
+    /// camera_ray() and project_to_pixel() with the rectangle's size give its pixels.
     Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
-                  const std::function<void()>& overlay);
+                  const std::function<void()>& overlay, const PixelRect& view = {});
     /// Distinct shapes tessellated so far (the mesh cache's size; a shape change adds one).
     [[nodiscard]] int cached_mesh_count() const;
 
@@ -130,10 +139,49 @@ SM_API void apply_scene_looks(Renderer& renderer, const Scene& scene, const Worl
 
 // ---- Images ---------------------------------------------------------------------------------------
 
-/// Writes a PNG (stb_image_write). Errors name the path.
+/// The PNG file of an image, in memory (libspng; zlib level 1, the Sub filter on every row, 8-bit RGB
+/// when every pixel is opaque, else RGBA). The same image always gives the same bytes.
+[[nodiscard]] SM_API Result<std::vector<uint8_t>> encode_png(const Image& image);
+/// Writes encode_png() to `path` through a temporary file next to it, renamed when complete: an error
+/// leaves no file behind. Errors name the path.
 SM_API Status write_png(const std::string& path, const Image& image);
 /// Reads a PNG as RGBA.
 [[nodiscard]] SM_API Result<Image> read_png(const std::string& path);
+
+/// How a PngWriter works. Start from the defaults and change what differs.
+struct PngWriterDef {
+    int threads = 1; ///< Encoding threads, in [0, 64]; 0 encodes inside submit() (no thread).
+    int queue = 2;   ///< Frames that may wait for a thread before submit() blocks, in [1, 64].
+};
+
+/// Writes PNG files on worker threads so that a host renders frame N + 1 while frame N is encoded.
+/// Each file holds exactly what write_png() would write, and files appear complete and in submission
+/// order (each is renamed into place only after every earlier one). After the first error nothing more
+/// is written; submit() and finish() return that error.
+class SM_API PngWriter
+{
+  public:
+    /// Starts the threads. Errors when def is out of range.
+    [[nodiscard]] static Result<std::unique_ptr<PngWriter>> create(const PngWriterDef& def = {});
+    /// Waits for every submitted file (errors then are lost: call finish() to see them).
+    ~PngWriter();
+    PngWriter(const PngWriter&) = delete;
+    PngWriter& operator=(const PngWriter&) = delete;
+
+    /// Queues `image` for `path`, taking its pixels; blocks while the queue is full. Returns the first
+    /// error of an earlier file, if any (this image is then not written).
+    Status submit(const std::string& path, Image&& image);
+    /// Waits until every submitted file is written; the first error, if any.
+    Status finish();
+    /// Files written so far.
+    [[nodiscard]] long long files_written() const;
+
+    struct Impl;
+
+  private:
+    explicit PngWriter(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> m_impl;
+};
 
 /// Pixel-wise comparison of two images of the same size.
 struct ImageDiff {

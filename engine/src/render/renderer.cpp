@@ -183,10 +183,10 @@ struct Renderer::Impl {
                    PoseSource poses);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
-    render::View begin_frame(const World& world, const CameraDef& camera_in);
+    render::View begin_frame(const World& world, const CameraDef& camera_in, const PixelRect& rect);
     void draw_bodies(const World& world, PoseSource poses, std::vector<std::pair<Vec3, double>>& out_planes);
     Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
-                  const std::function<void()>& overlay);
+                  const std::function<void()>& overlay, const PixelRect& view);
 };
 
 void Renderer::Impl::draw_grid(const World& world, const render::View& view, const Vec3& normal_in,
@@ -286,9 +286,10 @@ void Renderer::Impl::draw_shadows(const World& world, const render::View& view, 
 }
 
 // Frames the camera, clears the framebuffer and sets up the body program: the view of this frame.
-render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& camera_in)
+render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& camera_in,
+                                         const PixelRect& rect)
 {
-    const double aspect = static_cast<double>(def.width) / def.height;
+    const double aspect = static_cast<double>(rect.width) / rect.height;
     CameraDef camera = frame_bodies(world, camera_in, aspect);
     if (def.fault == RenderFault::FlippedYaw)
         camera.yaw_deg += 180.0;
@@ -298,7 +299,11 @@ render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& ca
 
     framebuffer.bind();
     glDepthMask(GL_TRUE);
+    glClearColor(static_cast<float>(def.sky_bottom.x), static_cast<float>(def.sky_bottom.y),
+                 static_cast<float>(def.sky_bottom.z), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glViewport(rect.x, def.height - rect.y - rect.height, rect.width,
+               rect.height); // GL counts from the bottom
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
@@ -350,15 +355,25 @@ void Renderer::Impl::draw_bodies(const World& world, PoseSource poses,
 }
 
 Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
-                              const std::function<void()>& overlay)
+                              const std::function<void()>& overlay, const PixelRect& view_in)
 {
+    PixelRect rect = view_in;
+    if (rect.width == 0 && rect.height == 0)
+        rect = {0, 0, def.width, def.height};
+    if (rect.width < 1 || rect.height < 1 || rect.x < 0 || rect.y < 0 || rect.x + rect.width > def.width ||
+        rect.y + rect.height > def.height)
+        return Error{"", "render/view",
+                     "expected a rectangle inside the " + std::to_string(def.width) + "x" +
+                         std::to_string(def.height) + " image, found " + std::to_string(rect.width) + "x" +
+                         std::to_string(rect.height) + " at (" + std::to_string(rect.x) + ", " +
+                         std::to_string(rect.y) + ")"};
     if (Status s = context.make_current(); !s)
         return s;
     if (last_world != &world) { // another world: its handles mean other bodies
         bodies.clear();
         last_world = &world;
     }
-    const render::View view = begin_frame(world, camera_in);
+    const render::View view = begin_frame(world, camera_in, rect);
     std::vector<std::pair<Vec3, double>> planes;
     draw_bodies(world, poses, planes);
     glDisable(GL_CULL_FACE);
@@ -373,6 +388,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     out.width = def.width;
     out.height = def.height;
     if (overlay) {
+        framebuffer.bind(); // the viewport back to the whole image
         overlay();
         framebuffer.bind(); // the overlay may have bound something else
     }
@@ -421,12 +437,12 @@ void Renderer::set_body_mesh(Entity body, std::shared_ptr<const TriangleMesh> me
 }
 Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses)
 {
-    return m_impl->render(world, camera, out, poses, {});
+    return m_impl->render(world, camera, out, poses, {}, {});
 }
 Status Renderer::render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
-                        const std::function<void()>& overlay)
+                        const std::function<void()>& overlay, const PixelRect& view)
 {
-    return m_impl->render(world, camera, out, poses, overlay);
+    return m_impl->render(world, camera, out, poses, overlay, view);
 }
 int Renderer::cached_mesh_count() const
 {

@@ -151,6 +151,18 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
     return p;
 }
 
+// A point's sides and masses made again where it is (a modal side changes every substep).
+void remake_sides(Registry& reg, const BodyPair& pair, SoftPoint& p, double h)
+{
+    const Vec3 x = p.a.point;
+    p.a = contact_side(reg, pair.a, x, h);
+    p.b = contact_side(reg, pair.b, x, h);
+    const Mat3 k = point_mass_inverse(p.a, p.b);
+    p.normal_mass = inverse_along(k, p.normal);
+    p.tangent_mass[0] = inverse_along(k, p.tangent[0]);
+    p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
+}
+
 // The pair's rows and warm start: its last normal load shared by the points' weights, its friction
 // and rolling loads likewise, turned into today's contact plane.
 void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
@@ -345,6 +357,30 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Regist
     // Each pair writes its own rows; the warm start pushes the bodies, so it runs in pair order.
     for (SoftPair& sp : rows.pairs)
         prepare_pair(def, reg, io, sp, ctx.h);
+}
+
+void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io)
+{
+    SoftContacts& rows = io.soft;
+    io.contacts.clear();
+    io.max_penetration = 0.0;
+    prepare_modal_substep(reg, ctx.h);
+    for (SoftPair& sp : rows.pairs) {
+        const BodyPair& pair = io.pairs[sp.pair];
+        sp.sliding = false;
+        for (uint32_t i = 0; i < sp.count; ++i) {
+            SoftPoint& p = rows.points[sp.first + i];
+            if (p.a.modal.active() || p.b.modal.active())
+                remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
+            apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
+                         p.tangent_impulse[1] * p.tangent[1]);
+        }
+        if (sp.count > 0 && sp.rolling > 0.0) {
+            SoftPoint& first = rows.points[sp.first];
+            push_rigid_spin(first.a, sp.roll_impulse);
+            push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
+        }
+    }
 }
 
 ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias)

@@ -67,6 +67,9 @@ struct SoftContacts {
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);
+/// A solver substep on the last substep's rows (no narrowphase between): their gaps as the bodies moved
+/// them, their impulses applied again as the warm start; a modal side is made anew for this substep.
+void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io);
 /// The rows as the constraint solver's extra rows (one per pair), with or without the push-out.
 [[nodiscard]] ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias);
 /// Pair i's bounce (see restitute_soft_contacts), for solve_extra_rows.

@@ -40,6 +40,8 @@ Status validate_soft(const SoftContactDef& soft)
         return Error{"", "contact.soft.restitution_speed", "expected a finite speed >= 0 m/s"};
     if (soft.iterations < 1 || soft.iterations > 100)
         return Error{"", "contact.soft.iterations", "expected an integer in [1, 100]"};
+    if (soft.substeps < 1 || soft.substeps > 64)
+        return Error{"", "contact.soft.substeps", "expected an integer in [1, 64]"};
     return {};
 }
 
@@ -138,9 +140,11 @@ void World::Impl::step()
     run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
+    // The soft solver's own substeps reuse each narrowphase's points (Box2D v3's soft step).
+    const int solver_substeps = def.contact.solver == ContactSolver::Soft ? def.contact.soft.substeps : 1;
     StepContext ctx = make_step_context(def);
-    ctx.substep_count = substeps;
-    ctx.h = def.dt / substeps;
+    ctx.substep_count = substeps * solver_substeps;
+    ctx.h = def.dt / ctx.substep_count;
     ctx.faults = &faults;
     faults.events.clear();
     faults.step = step_count;
@@ -152,9 +156,11 @@ void World::Impl::step()
             integrate_forces(ctx, parallel, reg);
             freeze_non_finite(ctx, Stage::IntegrateForces, parallel, reg, scratch.integrate, warnings);
         });
-        run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
+        const bool collide = i % solver_substeps == 0;
+        if (collide)
+            run(Stage::Narrowphase, [&] { collide_pairs(def, reg, parallel, contact); });
         if (def.contact.solver == ContactSolver::Soft) {
-            soft_substep(ctx, run);
+            soft_substep(ctx, run, !collide, (i + 1) % solver_substeps == 0);
             continue;
         }
         run(Stage::PenaltyForces, [&] {
@@ -194,11 +200,16 @@ void World::Impl::step()
 
 // The rest of a substep with the soft contact solver: contact and constraint rows solved together with
 // the push-out, the positions moved, the contact rows relaxed without it (so the push-out leaves no
-// speed behind) and bounced; the modes then take the substep's impulses.
-template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run& run)
+// speed behind); the modes then take the substep's impulses. `reuse`: the rows of the last substep
+// carry on (no narrowphase ran); `last`: the last substep before the next narrowphase or the step's
+// end, which bounces the rows and brings the surfaces up to date.
+template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run& run, bool reuse, bool last)
 {
     run(Stage::PenaltyForces, [&] {
-        prepare_soft_contacts(def.contact, ctx, reg, contact);
+        if (reuse)
+            refresh_soft_contacts(ctx, reg, contact);
+        else
+            prepare_soft_contacts(def.contact, ctx, reg, contact);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
         apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints,
                                 soft_contact_rows(contact.soft, true));
@@ -214,12 +225,16 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         const ExtraRows relax = soft_contact_rows(contact.soft, false);
         solve_extra_rows(parallel, scratch.constraints, relax.count, def.contact.soft.iterations, relax.solve,
                          relax.ctx);
-        solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair, &contact.soft);
+        if (last)
+            solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair,
+                             &contact.soft);
         finish_soft_contacts(ctx, contact);
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
-    run(Stage::UpdateSurfaces, [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
+    if (last)
+        run(Stage::UpdateSurfaces,
+            [&] { update_modal_surfaces(parallel, reg, contact.pairs, scratch.modal); });
 }
 
 void World::step()

@@ -47,7 +47,7 @@ struct World::Impl {
 
     void step();
     /// A substep's solve with the soft contact solver (after the narrowphase); `run` times the stages.
-    template <class Run> void soft_substep(const StepContext& ctx, Run& run);
+    template <class Run> void soft_substep(const StepContext& ctx, Run& run, bool reuse, bool last);
 };
 
 /// The engine's access to a world's insides (World::m_impl); hosts have only the public functions.
