@@ -2,8 +2,10 @@
 // CHOLMOD behind SparseCholesky (see sparse_cholesky.h).
 #include "modal/sparse_cholesky.h"
 
+#include <algorithm>
 #include <cholmod.h>
 #include <cstring>
+#include <limits>
 
 namespace supermodal::modal
 {
@@ -76,7 +78,11 @@ void SparseCholesky::solve(const double* x, double* y) const
     Impl& s = *m_impl;
     const auto n = static_cast<size_t>(m_rows);
     std::memcpy(s.b->x, x, n * sizeof(double));
-    cholmod_solve2(CHOLMOD_A, s.factor, s.b, nullptr, &s.x, nullptr, &s.y, &s.e, &s.common);
+    if (!cholmod_solve2(CHOLMOD_A, s.factor, s.b, nullptr, &s.x, nullptr, &s.y, &s.e, &s.common) ||
+        s.x == nullptr) { // out of memory: NaNs make the eigen solve report no convergence
+        std::fill(y, y + n, std::numeric_limits<double>::quiet_NaN());
+        return;
+    }
     std::memcpy(y, s.x->x, n * sizeof(double));
 }
 
