@@ -4,6 +4,15 @@ find_package(nlohmann_json 3.10 CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(Eigen3 3.4 CONFIG REQUIRED)   # modal: sparse assembly, dense eigen solves
 find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)  # modal: shift-invert eigen solves
+# modal: supernodal sparse Cholesky with a fill-reducing ordering (libsuitesparse-dev; Debian's 5.x ships
+# no pkg-config file or CMake package for it, so the header and library are found directly).
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+if(NOT TARGET SuiteSparse::CHOLMOD)
+  add_library(SuiteSparse::CHOLMOD UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::CHOLMOD PROPERTIES IMPORTED_LOCATION ${CHOLMOD_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES ${CHOLMOD_INCLUDE_DIR})
+endif()
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CCD REQUIRED IMPORTED_TARGET ccd)  # contact: MPR penetration (libccd, double build)
 find_package(assimp 5.2 CONFIG REQUIRED)  # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)

@@ -45,10 +45,13 @@ struct Pinned {
 // patches instead of MPR and tilted supports), the demo's board and the chair's flat parts among them. Then
 // both: the support map of ε ≠ 1 takes two powers per nesting level instead of three (r^(q−1) = r^q / r;
 // rounding-level).
+// Ball on board, 2026-12-02 (modal bases): the sparse eigen solve factors K − σM with CHOLMOD's
+// supernodal Cholesky instead of Eigen's simplicial LDLᵀ, so the board's modes differ in their last
+// bits (the same frequencies to 1e-9, as the dense/sparse tests check); the other three keep theirs.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xcd1701ec0b830966ULL},
     {"chair_with_dummy", 500, 0x229d1cdb847e92d7ULL},
-    {"ball_on_board", 400, 0xb2912584e7bc71d0ULL},
+    {"ball_on_board", 400, 0x892380ce954cbd5dULL},
     {"pile", 240, 0xf70ec8ba52f26022ULL},
 };
 

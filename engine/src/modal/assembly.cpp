@@ -5,6 +5,7 @@
 #include "supermodal/geometry.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <deque>
 
@@ -135,6 +136,22 @@ bool inside(const ShapeDef& shape, bool plain, const Vec3& p)
 
 } // namespace
 
+LatticeModel& LatticeModel::operator=(LatticeModel&& other) noexcept
+{
+    lattice = other.lattice;
+    cell_nodes = std::move(other.cell_nodes);
+    cell_proxy = std::move(other.cell_proxy);
+    node_positions = std::move(other.node_positions);
+    node_grid = std::move(other.node_grid);
+    stiffness.swap(other.stiffness);
+    mass.swap(other.mass);
+    kept_cell_count = other.kept_cell_count;
+    cut_cell_count = other.cut_cell_count;
+    aggregated_cell_count = other.aggregated_cell_count;
+    dropped_sliver_count = other.dropped_sliver_count;
+    return *this;
+}
+
 Lame lame_from(double young, double poisson)
 {
     return {young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)), young / (2.0 * (1.0 + poisson))};
@@ -254,10 +271,68 @@ void number_nodes(const Lattice& lat, const CellWork& w, LatticeModel& model)
             model.cell_nodes[i] = grid_to_node[grid_nodes[i]];
 }
 
+/// Per node, the sorted nodes it shares a kept cell with (itself included): the sparsity of K and M
+/// by 3 × 3 node blocks.
+std::vector<std::vector<int32_t>> node_neighbours(const Lattice& lat, const CellWork& w,
+                                                  const LatticeModel& model)
+{
+    const int per_cell = cell_nodes_of_order(lat.order).count;
+    std::vector<std::vector<int32_t>> near(static_cast<size_t>(model.node_count()));
+    for (int c = 0; c < lat.cell_count(); ++c) {
+        if (!is_good(w.state[c]))
+            continue;
+        const int32_t* nodes = &model.cell_nodes[static_cast<size_t>(c) * per_cell];
+        for (int a = 0; a < per_cell; ++a)
+            near[nodes[a]].insert(near[nodes[a]].end(), nodes, nodes + per_cell);
+    }
+    for (std::vector<int32_t>& list : near) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    return near;
+}
+
+/// Compressed columns with the node-block pattern: every (row node, column node) pair in `near` gives
+/// rows 3a + i of column 3b + j, for i ∈ `rows_of(j)` (all three for K, i = j for M). Values zero.
+SparseMatrix block_pattern(const std::vector<std::vector<int32_t>>& near, bool diagonal_blocks)
+{
+    const auto nodes = static_cast<int>(near.size());
+    const int per_pair = diagonal_blocks ? 1 : 3;
+    SparseMatrix a(3 * nodes, 3 * nodes);
+    size_t total = 0;
+    for (const std::vector<int32_t>& list : near)
+        total += 3 * per_pair * list.size();
+    a.resizeNonZeros(static_cast<Eigen::Index>(total));
+    int* outer = a.outerIndexPtr();
+    int* inner = a.innerIndexPtr();
+    int at = 0;
+    for (int b = 0; b < nodes; ++b)
+        for (int j = 0; j < 3; ++j) {
+            outer[3 * b + j] = at;
+            for (const int32_t node : near[b])
+                for (int i = 0; i < 3; ++i)
+                    if (!diagonal_blocks || i == j)
+                        inner[at++] = 3 * node + i;
+        }
+    outer[3 * nodes] = at;
+    std::fill(a.valuePtr(), a.valuePtr() + at, 0.0);
+    return a;
+}
+
+/// Adds each kept cell's K and M into compressed storage with the node-block pattern, cell by cell
+/// (the sums come out in the order a triplet assembly would make them).
 void scatter(const Lattice& lat, const CellWork& w, LatticeModel& model)
 {
     const int per_cell = cell_nodes_of_order(lat.order).count;
-    std::vector<Eigen::Triplet<double>> tk, tm;
+    const std::vector<std::vector<int32_t>> near = node_neighbours(lat, w, model);
+    SparseMatrix k = block_pattern(near, false), m = block_pattern(near, true);
+    model.stiffness.swap(k);
+    model.mass.swap(m);
+    double* k_values = model.stiffness.valuePtr();
+    double* m_values = model.mass.valuePtr();
+    const int* k_outer = model.stiffness.outerIndexPtr();
+    const int* m_outer = model.mass.outerIndexPtr();
+    int slot[k_max_cell_nodes]; // position of row node a among column node b's neighbours
     for (int c = 0; c < lat.cell_count(); ++c) {
         if (!is_good(w.state[c]))
             continue;
@@ -267,19 +342,23 @@ void scatter(const Lattice& lat, const CellWork& w, LatticeModel& model)
         const bool own = w.k[c].size() > 0;
         const Eigen::MatrixXd& k_e = own ? w.k[c] : w.full_k;
         const Eigen::MatrixXd& m_e = own ? w.m[c] : w.full_m;
-        for (int a = 0; a < per_cell; ++a)
-            for (int b = 0; b < per_cell; ++b)
-                for (int i = 0; i < 3; ++i) {
-                    tm.emplace_back(3 * nodes[a] + i, 3 * nodes[b] + i, m_e(a, b));
-                    for (int j = 0; j < 3; ++j)
-                        tk.emplace_back(3 * nodes[a] + i, 3 * nodes[b] + j, k_e(3 * a + i, 3 * b + j));
+        for (int b = 0; b < per_cell; ++b) {
+            const std::vector<int32_t>& list = near[nodes[b]];
+            for (int a = 0; a < per_cell; ++a)
+                slot[a] =
+                    static_cast<int>(std::lower_bound(list.begin(), list.end(), nodes[a]) - list.begin());
+            for (int j = 0; j < 3; ++j) {
+                const int col = 3 * nodes[b] + j;
+                double* k_col = k_values + k_outer[col];
+                double* m_col = m_values + m_outer[col];
+                for (int a = 0; a < per_cell; ++a) {
+                    for (int i = 0; i < 3; ++i)
+                        k_col[3 * slot[a] + i] += k_e(3 * a + i, 3 * b + j);
+                    m_col[slot[a]] += m_e(a, b);
                 }
+            }
+        }
     }
-    const int n = model.dof_count();
-    model.stiffness.resize(n, n);
-    model.mass.resize(n, n);
-    model.stiffness.setFromTriplets(tk.begin(), tk.end());
-    model.mass.setFromTriplets(tm.begin(), tm.end());
 }
 
 } // namespace

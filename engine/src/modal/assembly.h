@@ -38,6 +38,14 @@ struct LatticeModel {
     int aggregated_cell_count = 0; ///< Slivers merged into a face neighbour.
     int dropped_sliver_count = 0;  ///< Slivers with no face neighbour to merge into: material lost.
 
+    LatticeModel() = default;
+    LatticeModel(const LatticeModel&) = default;
+    LatticeModel& operator=(const LatticeModel&) = default;
+    /// Moves swap K and M: Eigen 3.4's SparseMatrix has no move, and copying them costs as much as
+    /// assembling them on a large lattice.
+    LatticeModel(LatticeModel&& other) noexcept { *this = std::move(other); }
+    LatticeModel& operator=(LatticeModel&& other) noexcept;
+
     [[nodiscard]] int node_count() const { return static_cast<int>(node_positions.size()); }
     [[nodiscard]] int dof_count() const { return 3 * node_count(); }
 };

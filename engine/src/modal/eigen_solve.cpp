@@ -5,21 +5,25 @@
 // on purpose: K − σM (σ < 0) is well conditioned and positive definite, while M may be nearly singular
 // where a node only touches a sliver of material, and a Cholesky of M would smear that over the lowest
 // modes.
-// Sparse path: Spectra's shift-invert Lanczos with a sparse LDLᵀ of K − σM. The six rigid modes are
-// known in closed form, so they are deflated (projected out of every Krylov vector) rather than found:
-// Lanczos sees one vector per distinct eigenvalue in exact arithmetic, and an exactly six-fold one
-// would converge slowly and unreliably. For the same reason it can miss copies of repeated elastic
-// frequencies, so a Sturm count (the inertia of an LDLᵀ of K − μM) checks that every eigenvalue below
-// the cut was found; missed ones are searched for with the found ones deflated too.
+// Sparse path: Spectra's shift-invert Lanczos with a supernodal Cholesky (CHOLMOD, fill-reducing
+// ordering) of K − σM, positive definite for σ < 0. The six rigid modes are known in closed form, so
+// they are deflated (projected out of every Krylov vector) rather than found: Lanczos sees one vector
+// per distinct eigenvalue in exact arithmetic, and an exactly six-fold one would converge slowly and
+// unreliably. For the same reason it can miss copies of repeated elastic frequencies, so a
+// confirmation run looks for the lowest modes left once everything found is deflated too: a missed
+// copy is the largest eigenvalue of that deflated operator, which Lanczos finds first. Modes it finds
+// below the cut are added and the search repeats. (A Sturm count, the inertia of an LDLᵀ of K − μM,
+// would check the same; no supernodal factorization here gives the inertia of an indefinite matrix,
+// and a simplicial one costs several times the whole solve on 3-D lattices.)
 // Both paths end with a Rayleigh–Ritz step on K and M themselves: it makes the kept vectors exactly
 // M-orthonormal and K-orthogonal (including inside clusters of repeated frequencies) and gives the
 // eigenvalues as Rayleigh quotients, free of the cancellation in 1/ν + σ.
 #include "modal/eigen_solve.h"
 
+#include "modal/sparse_cholesky.h"
 #include "modal/spectrum.h"
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <algorithm>
@@ -37,6 +41,8 @@ using Vector = Eigen::VectorXd;
 constexpr double k_shift_fraction = 1e-3;    // σ = −k · E/(ρℓ²): safely below every elastic ω²
 constexpr double k_cluster_tolerance = 1e-6; // relative gap below which two ω² count as repeated
 constexpr int k_max_rounds = 4;
+constexpr int k_confirm_count = 3; // modes a confirmation run asks for: one more than the largest
+                                   // multiplicity a lattice's cubic symmetry allows
 constexpr double k_lanczos_tolerance = 1e-10;
 
 /// M-orthonormalises the columns of v: v ← v L⁻ᵀ with vᵀMv = LLᵀ.
@@ -68,43 +74,32 @@ bool rayleigh_ritz(const SparseMatrix& k, const SparseMatrix& m, const Dense& v,
     return true;
 }
 
-/// (K − σM)⁻¹ x followed by the M-orthogonal projection away from the deflated vectors D (columns
-/// M-orthonormal): y ← y − D (MD)ᵀ y. Spectra's ShiftInvert mode applies M first.
+/// (K − σM)⁻¹ x (from its Cholesky factor, made once per solve) followed by the M-orthogonal
+/// projection away from the deflated vectors D (columns M-orthonormal): y ← y − D (MD)ᵀ y. Spectra's
+/// ShiftInvert mode applies M first.
 class DeflatedShiftInvert
 {
   public:
     using Scalar = double;
 
-    DeflatedShiftInvert(const SparseMatrix& k, const SparseMatrix& m, const Dense& deflate,
-                        const Dense& m_deflate)
-        : m_k(k), m_m(m), m_deflate(deflate), m_m_deflate(m_deflate)
+    DeflatedShiftInvert(const SparseCholesky& cholesky, const Dense& deflate, const Dense& m_deflate)
+        : m_cholesky(cholesky), m_deflate(deflate), m_m_deflate(m_deflate)
     {
     }
-    [[nodiscard]] Eigen::Index rows() const { return m_k.rows(); }
-    [[nodiscard]] Eigen::Index cols() const { return m_k.cols(); }
-    void set_shift(double sigma)
-    {
-        m_ldlt.compute(SparseMatrix(m_k - sigma * m_m));
-        // σ < 0 makes K − σM positive definite; a non-positive pivot means it is numerically singular
-        // and the solves would feed Spectra NaNs.
-        m_ok = m_ldlt.info() == Eigen::Success && (m_ldlt.vectorD().array() > 0.0).all();
-    }
+    [[nodiscard]] Eigen::Index rows() const { return m_cholesky.rows(); }
+    [[nodiscard]] Eigen::Index cols() const { return m_cholesky.rows(); }
+    void set_shift(double /*sigma*/) {} // the factor already holds the shift
     void perform_op(const double* x_in, double* y_out) const
     {
-        const Eigen::Map<const Vector> x(x_in, m_k.rows());
-        Eigen::Map<Vector> y(y_out, m_k.rows());
-        y = m_ldlt.solve(x);
+        m_cholesky.solve(x_in, y_out);
+        Eigen::Map<Vector> y(y_out, rows());
         y -= m_deflate * (m_m_deflate.transpose() * y);
     }
-    [[nodiscard]] bool ok() const { return m_ok; }
 
   private:
-    const SparseMatrix& m_k;
-    const SparseMatrix& m_m;
+    const SparseCholesky& m_cholesky;
     const Dense& m_deflate;
     const Dense& m_m_deflate;
-    Eigen::SimplicialLDLT<SparseMatrix> m_ldlt;
-    bool m_ok = false;
 };
 
 /// A fixed pseudo-random start vector (64-bit LCG), the same on every platform.
@@ -121,20 +116,18 @@ Vector start_vector(Eigen::Index n)
 
 /// The `nev` largest eigenvalues of the deflated shift-invert operator, as M-orthonormal vectors.
 /// Spectra throws on nev/ncv out of range: the caller guarantees nev + 1 < n − deflate.cols().
-bool run_lanczos(const SparseMatrix& k, const SparseMatrix& m, const Dense& deflate, int nev, double sigma,
-                 Dense& out_vectors)
+bool run_lanczos(const SparseCholesky& cholesky, const SparseMatrix& m, const Dense& deflate, int nev,
+                 double sigma, Dense& out_vectors)
 {
     using Solver = Spectra::SymGEigsShiftSolver<DeflatedShiftInvert, Spectra::SparseSymMatProd<double>,
                                                 Spectra::GEigsMode::ShiftInvert>;
     const Dense m_deflate = m * deflate;
-    DeflatedShiftInvert op(k, m, deflate, m_deflate);
+    DeflatedShiftInvert op(cholesky, deflate, m_deflate);
     Spectra::SparseSymMatProd<double> bop(m);
-    const auto free_dim = static_cast<int>(k.rows() - deflate.cols());
+    const auto free_dim = static_cast<int>(m.rows() - deflate.cols());
     const int ncv = std::min(free_dim, std::max(2 * nev + 1, nev + 20));
     Solver geigs(op, bop, nev, ncv, sigma);
-    if (!op.ok())
-        return false;
-    Vector v0 = start_vector(k.rows());
+    Vector v0 = start_vector(m.rows());
     v0 -= deflate * (m_deflate.transpose() * v0);
     geigs.init(v0.data());
     geigs.compute(Spectra::SortRule::LargestMagn, 1000, k_lanczos_tolerance, Spectra::SortRule::SmallestAlge);
@@ -144,17 +137,8 @@ bool run_lanczos(const SparseMatrix& k, const SparseMatrix& m, const Dense& defl
     return out_vectors.allFinite();
 }
 
-/// Number of eigenvalues of (K, M) below μ (Sylvester: negative pivots of LDLᵀ of K − μM), or −1.
-int count_below(const SparseMatrix& k, const SparseMatrix& m, double mu)
-{
-    const Eigen::SimplicialLDLT<SparseMatrix> ldlt(SparseMatrix(k - mu * m));
-    if (ldlt.info() != Eigen::Success)
-        return -1;
-    return static_cast<int>((ldlt.vectorD().array() < 0.0).count());
-}
-
 /// A cut μ between the wanted-th value (0-based) and the next distinct one above it.
-double sturm_cut(const Vector& values, int wanted)
+double cut_above(const Vector& values, int wanted)
 {
     const double top = values[wanted];
     for (Eigen::Index j = wanted + 1; j < values.size(); ++j)
@@ -175,7 +159,8 @@ bool solve_dense(const LatticeModel& model, int count, double sigma, Dense& out_
     return out_vectors.allFinite();
 }
 
-/// Sparse: the rigid vectors followed by at least `wanted` elastic ones, Sturm-checked.
+/// Sparse: the rigid vectors followed by at least `wanted` elastic ones, confirmed complete below the
+/// cut unless out_checked comes back false.
 bool solve_sparse(const LatticeModel& model, int wanted, double sigma, Dense& out_vectors, int& out_rounds,
                   bool& out_checked)
 {
@@ -184,32 +169,46 @@ bool solve_sparse(const LatticeModel& model, int wanted, double sigma, Dense& ou
     Dense rigid = rigid_body_vectors(model);
     if (!m_orthonormalize(m, rigid))
         return false;
+    SparseMatrix shifted = k - sigma * m;
+    shifted.makeCompressed();
+    SparseCholesky cholesky;
+    if (!cholesky.compute(shifted))
+        return false;
+    shifted.resize(0, 0);
     Dense found(k.rows(), 0);
     Vector values;
+    double cut = 0.0;
     int nev = wanted + 1; // one spare: Lanczos converges the outermost wanted values last
     out_checked = false;
-    for (out_rounds = 1; out_rounds <= k_max_rounds; ++out_rounds) {
+    out_rounds = 0;
+    for (;;) {
         Dense deflate(k.rows(), rigid.cols() + found.cols());
         deflate << rigid, found;
-        if (nev + 1 >= k.rows() - deflate.cols())
-            return false;
         Dense fresh;
-        if (!run_lanczos(k, m, deflate, nev, sigma, fresh))
-            return false;
+        if (nev + 1 >= k.rows() - deflate.cols() || !run_lanczos(cholesky, m, deflate, nev, sigma, fresh)) {
+            if (out_rounds == 0)
+                return false;
+            break; // no room or no convergence for a confirmation: keep what was found, unchecked
+        }
+        if (out_rounds > 0) { // a confirmation run: done when the lowest mode left lies above the cut
+            Vector left;
+            Dense unused;
+            if (!rayleigh_ritz(k, m, fresh, left, unused))
+                return false;
+            if (left[0] > cut) {
+                out_checked = true;
+                break;
+            }
+            if (out_rounds == k_max_rounds)
+                break;
+        }
+        ++out_rounds; // missed copies of repeated eigenvalues (or the first search): add them
         Dense merged(k.rows(), found.cols() + fresh.cols());
         merged << found, fresh;
         if (!rayleigh_ritz(k, m, merged, values, found))
             return false;
-        const double mu = sturm_cut(values, wanted - 1);
-        const int below = count_below(k, m, mu);
-        const auto expected = static_cast<int>(6 + (values.array() < mu).count());
-        if (below < 0)
-            break; // singular at μ: cannot check, keep what Lanczos found
-        if (below <= expected) {
-            out_checked = true;
-            break;
-        }
-        nev = below - expected + 2; // missed copies of repeated eigenvalues: look again, found ones deflated
+        cut = cut_above(values, wanted - 1);
+        nev = k_confirm_count;
     }
     out_vectors.resize(k.rows(), rigid.cols() + found.cols());
     out_vectors << rigid, found;

@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""Runs modal_basis_bench builds over lattice sizes and writes docs/bench/modal_basis.csv and .png.
+
+Each LABEL[:COMMIT]=BINARY is one build of bench/modal_basis_bench.cpp (e.g. before and after a change).
+Every (build, size) runs in its own process, so peak_mb is that build's peak resident set (the process
+starts at about 6 MB). Rows: label, cells per axis, dofs, wall and CPU seconds of one build
+(assembly + eigen solve + checks), the assembly and eigen split (wall), peak MB, the solver's rounds,
+whether completeness was confirmed, and the first and twelfth frequency (equal across builds to
+the digits shown: the same modes).
+Usage: bench/modal_basis_report.py OUT.csv [--cells 4,6,8,10,12] LABEL[:COMMIT]=BINARY [...]
+       bench/modal_basis_report.py --plot OUT.csv   (the plot again from the CSV)
+"""
+import csv
+import datetime
+import io
+import os
+import platform
+import shutil
+import subprocess
+import sys
+
+HEADER = ["date", "machine", "cpu", "commit", "build", "cells", "dofs", "seconds", "cpu_seconds",
+          "assembly_s", "eigen_s", "peak_mb", "rounds", "checked", "f1_hz", "f12_hz"]
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def run(binary, cells):
+    out = subprocess.run([binary, f"--benchmark_filter=BM_ModalBasis_Cube/{cells}/", "--benchmark_format=csv"],
+                         check=True, capture_output=True, text=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out[out.index("name,"):])))
+    if len(rows) != 1 or rows[0].get("error_occurred") == "true":
+        raise SystemExit(f"{binary}: no result for {cells} cells: {rows}")
+    return rows[0]
+
+
+def main():
+    args = sys.argv[1:]
+    out_csv = args.pop(0)
+    cells = [4, 6, 8, 10, 12]
+    if args and args[0] == "--cells":
+        cells = [int(c) for c in args[1].split(",")]
+        args = args[2:]
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    date = datetime.date.today().isoformat()
+    machine = f"{platform.node()} ({os.cpu_count()} cores)"
+    lines = []
+    for build in args:
+        label, binary = build.split("=", 1)
+        label, _, commit = label.partition(":")
+        for n in cells:
+            r = run(binary, n)
+            lines.append([date, machine, cpu_name(), commit or head, label, n, int(float(r["dofs"])),
+                          f"{float(r['real_time']):.3f}", f"{float(r['cpu_time']):.3f}",
+                          f"{float(r['assembly_s']):.3f}", f"{float(r['eigen_s']):.3f}",
+                          f"{float(r['peak_mb']):.0f}", int(float(r["rounds"])), int(float(r["checked"])),
+                          f"{float(r['f1_hz']):.6f}", f"{float(r['f12_hz']):.6f}"])
+            print(",".join(str(v) for v in lines[-1]), flush=True)
+    with open(out_csv, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(HEADER)
+        w.writerows(lines)
+    plot(out_csv, lines)
+
+
+def plot(out_csv, lines):
+    """CPU seconds and peak MB against dofs, one line per build (gnuplot, if installed)."""
+    if not shutil.which("gnuplot"):
+        print("gnuplot not found: no plot")
+        return
+    builds = []
+    for r in lines:
+        if r[4] not in builds:
+            builds.append(r[4])
+    data = out_csv[:-4] + ".dat"
+    with open(data, "w", encoding="utf-8") as f:
+        for b in builds:
+            f.write(f"# {b}\n")
+            for r in lines:
+                if r[4] == b:
+                    f.write(f"{r[6]} {r[8]} {r[11]}\n")
+            f.write("\n\n")
+    png = out_csv[:-4] + ".png"
+    curves_s = ", ".join(f'"{data}" index {i} using 1:2 with linespoints lw 2 title "{b}"'
+                         for i, b in enumerate(builds))
+    curves_mb = ", ".join(f'"{data}" index {i} using 1:3 with linespoints lw 2 title "{b}"'
+                          for i, b in enumerate(builds))
+    script = f"""
+set terminal pngcairo size 960,420 font "Helvetica,11" noenhanced
+set output "{png}"
+set multiplot layout 1,2 title "Modal basis build, rounded cube of 20-node cells, 12 modes ({lines[0][0]}, {lines[0][1]})"
+set logscale xy
+set grid
+set key top left
+set xlabel "degrees of freedom"
+set ylabel "CPU seconds per build"
+plot {curves_s}
+set ylabel "peak resident MB"
+plot {curves_mb}
+unset multiplot
+"""
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    os.remove(data)
+    print(png)
+
+
+def replot(out_csv):
+    with open(out_csv, encoding="utf-8") as f:
+        plot(out_csv, list(csv.reader(f))[1:])
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
+        replot(sys.argv[2])
+    elif len(sys.argv) >= 3:
+        main()
+    else:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
