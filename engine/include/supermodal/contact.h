@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Contact: settings, and what the host can read back after a step.
 //
-// Two solvers. Soft: each contact point is a spring–damper given by a frequency and a
-// damping ratio, solved implicitly as a velocity constraint together with the joints (warm started,
-// relaxed after the positions move), so its stability does not depend on the step; friction is a
-// velocity constraint bounded by the Coulomb cone. Penalty (the paper's, the default): an explicit spring–damper
-// force whose stiffness comes from a natural frequency and the pair's effective mass
-// (k = m_eff·(2πf)², c = 2ζ·m_eff·2πf), stable while 2πf·h stays small; friction is a tangential
-// spring anchored where the contact started to stick (Cundall–Strack), clamped to the Coulomb cone.
-// Either way the per-pair memory (anchors, last loads) is part of the world's state.
+// Two solvers. Soft: each contact point is a spring–damper given by a frequency and a damping ratio,
+// solved implicitly as a velocity constraint together with the joints (warm started, relaxed after the
+// positions move), so its stability does not depend on the step; friction is a velocity constraint
+// bounded by the Coulomb cone. Penalty (the paper's, the default): an explicit spring–damper force
+// whose stiffness comes from a natural frequency and the pair's effective mass (k = m_eff·(2πf)²,
+// c = 2ζ·m_eff·2πf), stable while 2πf·h stays small; friction is a tangential spring anchored where
+// the contact started to stick (Cundall–Strack), clamped to the Coulomb cone. Either way the per-pair
+// memory (anchors, last loads) is part of the world's state.
 #pragma once
 
 #include "supermodal/api.h"
