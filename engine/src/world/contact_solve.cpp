@@ -221,15 +221,8 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
 void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
 {
     const double vn = dot(relative_velocity(p), p.normal);
-    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-    if (p.separation > 0.0) {
-        bias = p.separation / h; // apart: only the approach that would close the gap within h is stopped
-    } else if (use_bias) {
-        bias = std::max(p.soft.bias_rate * p.separation, -push_out);
-        mass_scale = p.soft.mass_scale;
-        impulse_scale = p.soft.impulse_scale;
-    }
-    const double d = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+    const NormalTarget t = normal_target(p, h, push_out, use_bias);
+    const double d = -p.normal_mass * t.mass_scale * (vn + t.bias) - t.impulse_scale * p.normal_impulse;
     const double total = std::max(p.normal_impulse + d, 0.0);
     apply(p, (total - p.normal_impulse) * p.normal);
     p.normal_impulse = total;
@@ -329,6 +322,17 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
 }
 
 } // namespace
+
+NormalTarget normal_target(const SoftPoint& p, double h, double push_out, bool use_bias)
+{
+    if (p.separation > 0.0) // apart: only the approach that would close the gap within h is stopped
+        return {.bias = p.separation / h};
+    if (!use_bias)
+        return {};
+    return {.bias = std::max(p.soft.bias_rate * p.separation, -push_out),
+            .mass_scale = p.soft.mass_scale,
+            .impulse_scale = p.soft.impulse_scale};
+}
 
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io)
 {

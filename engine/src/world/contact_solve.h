@@ -13,6 +13,7 @@
 #include "supermodal/contact.h"
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
+#include "world/islands.h"
 
 #include <vector>
 
@@ -58,12 +59,29 @@ struct SoftPair {
 struct SoftContacts {
     std::vector<SoftPoint> points;
     std::vector<SoftPair> pairs;
-    std::vector<uint32_t> point_offset; ///< Per pair of ContactWorld::pairs, its first point.
-    double h = 0.0;                     ///< Substep [s].
-    double push_out_speed = 0.0;        ///< [m/s].
-    double restitution_speed = 0.0;     ///< [m/s].
-    double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
+    std::vector<uint32_t> point_offset;  ///< Per pair of ContactWorld::pairs, its first point.
+    double h = 0.0;                      ///< Substep [s].
+    double push_out_speed = 0.0;         ///< [m/s].
+    double restitution_speed = 0.0;      ///< [m/s].
+    double gravity = 0.0;                ///< |g| [m/s²]: a load's mass is its weight over this.
+    IslandBuilder islands;               ///< Islands of the pairs (scratch of the direct solve).
+    std::vector<uint32_t> island_points; ///< One island's points (scratch of the direct solve).
 };
+
+/// What a normal row aims at in a pass: v_n + bias + impulse_scale/(m·mass_scale)·λ = 0 for its
+/// accumulated impulse λ (a rigid row: mass_scale 1, impulse_scale 0).
+struct NormalTarget {
+    double bias = 0.0;          ///< [m/s].
+    double mass_scale = 1.0;    ///< [-].
+    double impulse_scale = 0.0; ///< [-].
+};
+[[nodiscard]] NormalTarget normal_target(const SoftPoint& p, double h, double push_out, bool use_bias);
+
+/// The normal rows of every small island of rigid bodies solved at once (contact_direct.cpp): each
+/// point's normal impulse such that every pushing row meets its target and none pulls. Gauss–Seidel
+/// moves a load through a light body by that body's share of the mass per pass, so a heavy body on a
+/// light one sank through it; solved at once, the passes that follow only add friction.
+void solve_small_islands(SoftContacts& rows, bool use_bias);
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);

@@ -210,6 +210,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
             refresh_soft_contacts(ctx, reg, contact);
         else
             prepare_soft_contacts(def.contact, ctx, reg, contact);
+        solve_small_islands(contact.soft, true);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
         apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints,
                                 soft_contact_rows(contact.soft, true));
@@ -223,6 +224,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         advance_soft_separations(contact.soft);
         // The islands of the solve above: the relax and the bounce touch the same bodies.
         const ExtraRows relax = soft_contact_rows(contact.soft, false);
+        solve_small_islands(contact.soft, false);
         solve_extra_rows(parallel, scratch.constraints, relax.count, def.contact.soft.iterations, relax.solve,
                          relax.ctx);
         if (last)
