@@ -16,7 +16,8 @@ cmake --build "$build" -j "$(nproc)" --target supermodal_thread_tests
 # Any report fails the run: halt_on_error makes the first race exit non-zero.
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
 # CHOLMOD (the modal bases' factorization) runs a few loops on OpenMP threads, and libgomp is not built
-# with ThreadSanitizer, so its barriers are invisible to it and every such loop reads as a race. One
-# OpenMP thread keeps those loops on the calling thread; the engine's own threads are what is tested.
-export OMP_NUM_THREADS=1
+# with ThreadSanitizer, so its barriers are invisible to it and every such loop reads as a race. A limit
+# of one OpenMP thread (CHOLMOD asks for its count per loop, so OMP_NUM_THREADS alone does not do) keeps
+# those loops on the calling thread; the engine's own threads are what is tested.
+export OMP_THREAD_LIMIT=1
 "$build/tests/supermodal_thread_tests" --gtest_brief=1
