@@ -11,20 +11,10 @@ import datetime
 import io
 import json
 import os
-import platform
 import subprocess
 import sys
 
-
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
+from machine import cpu_name  # bench/machine.py
 
 
 def main():

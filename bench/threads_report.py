@@ -18,16 +18,7 @@ import shutil
 import subprocess
 import sys
 
-
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
+from machine import cpu_name  # bench/machine.py
 
 
 def run(binary, scenes):
