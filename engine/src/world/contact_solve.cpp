@@ -62,6 +62,13 @@ void apply(SoftPoint& p, const Vec3& impulse)
     push(p.b, -1.0 * impulse, Vec3{});
 }
 
+// The point's accumulated impulses (normal and friction) on its bodies: the warm start.
+void apply_accumulated(SoftPoint& p)
+{
+    apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
+                 p.tangent_impulse[1] * p.tangent[1]);
+}
+
 Vec3 relative_velocity(const SoftPoint& p)
 {
     return anchor_velocity(p.a) - anchor_velocity(p.b);
@@ -191,8 +198,7 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
             continue;
         p.tangent_impulse[0] = w * h * dot(old->friction_load, p.tangent[0]);
         p.tangent_impulse[1] = w * h * dot(old->friction_load, p.tangent[1]);
-        apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
-                     p.tangent_impulse[1] * p.tangent[1]);
+        apply_accumulated(p);
     }
     if (sp.count > 0) {
         const SoftPoint& first = rows.points[sp.first];
@@ -372,8 +378,7 @@ void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& 
             SoftPoint& p = rows.points[sp.first + i];
             if (p.a.modal.active() || p.b.modal.active())
                 remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
-            apply(p, p.normal_impulse * p.normal + p.tangent_impulse[0] * p.tangent[0] +
-                         p.tangent_impulse[1] * p.tangent[1]);
+            apply_accumulated(p);
         }
         if (sp.count > 0 && sp.rolling > 0.0) {
             SoftPoint& first = rows.points[sp.first];
