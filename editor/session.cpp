@@ -17,8 +17,16 @@ Status EditorSession::load(const std::string& path)
     return load_scene(std::move(*scene));
 }
 
+void EditorSession::share_bases(Scene& scene) const
+{
+    // An edited scene comes back from JSON without the cache; every world this session builds shares it.
+    if (!scene.world.modal_basis_cache)
+        scene.world.modal_basis_cache = m_basis_cache;
+}
+
 Status EditorSession::load_scene(Scene scene)
 {
+    share_bases(scene);
     Result<World> world = build_world(scene);
     if (!world)
         return world.error();
@@ -165,6 +173,7 @@ Status EditorSession::rebuild_keeping_state(const Scene& edited)
     // Bodies keep where they are and how they move; a renamed body starts from its scene pose.
     if (m_world)
         (void)refresh_scene_from_world(running, *m_world, /*include_shapes=*/false);
+    share_bases(running);
     Result<World> world = build_world(running);
     if (!world)
         return world.error();

@@ -5,6 +5,7 @@
 
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
+#include "supermodal/modal.h"
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
@@ -134,6 +135,7 @@ class EditorSession
     static constexpr size_t k_timing_window = 60;
 
   private:
+    void share_bases(Scene& scene) const;
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
     void attach_step_listener();
@@ -158,6 +160,9 @@ class EditorSession
     };
 
     Scene m_scene;
+    // Bases outlive the worlds an edit rebuilds: a reset or a material edit of another body finds the
+    // modal bodies' bases here instead of solving them again (seconds for a fine lattice).
+    std::shared_ptr<ModalBasisCache> m_basis_cache = std::make_shared<ModalBasisCache>();
     std::optional<MouldFinger> m_mould;
     double m_mould_reached = 0.0;
     std::optional<World> m_world;

@@ -59,6 +59,21 @@ TEST(EditorSession, OtherEditsRebuildAtTheCurrentState)
     EXPECT_EQ(s.world().settings().substep_count, 2);
 }
 
+TEST(EditorSession, ResetAndRebuildsReuseTheModalBases)
+{
+    ed::EditorSession s = loaded("ball_on_board.json");
+    const sm::Entity board = sm::find_body(s.world(), "board");
+    ASSERT_TRUE(sm::world_valid(s.world(), board));
+    const sm::ModalBasis* first = sm::body_modal_basis(s.world(), board);
+    ASSERT_NE(first, nullptr);
+    ASSERT_TRUE(s.reset());
+    EXPECT_EQ(sm::body_modal_basis(s.world(), sm::find_body(s.world(), "board")), first);
+    ASSERT_TRUE(s.set("/settings/substeps", 2)); // a rebuild
+    EXPECT_EQ(s.last_set_effect(), ed::SetEffect::Rebuilt);
+    // The same basis object, not an equal one built again.
+    EXPECT_EQ(sm::body_modal_basis(s.world(), sm::find_body(s.world(), "board")), first);
+}
+
 TEST(EditorSession, RefusedValuesNameThePointerAndChangeNothing)
 {
     ed::EditorSession s = loaded("chair_with_dummy.json");
