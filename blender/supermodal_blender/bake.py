@@ -46,6 +46,9 @@ class Bake:
         except sm.SceneError as e:
             raise scene_error(self.doc, e) from None
         self.names = [b["name"] for b in self.doc["bodies"]]
+        # The start frame keeps the transforms as they are stored (see scene_json.stored_rotation).
+        self.start = {o.name: (list(o.location), scene_json.stored_rotation(o))
+                      for o in scene_json.body_objects(scene)}
         self.total = run_steps(self.doc["settings"]["duration"], self.world.dt)
         fps = scene.render.fps / scene.render.fps_base
         self.steps = sample_steps(self.total, self.world.dt, fps)
@@ -96,4 +99,5 @@ class Bake:
             obj = self.scene.objects[name]
             body = self.bodies[i]
             amplitudes = np.array(self.amplitudes.get(name, np.zeros((len(frames), 0))))
-            keyframes.write_body(obj, body, frames, self.steps, positions[:, i], orientations[:, i], amplitudes)
+            keyframes.write_body(obj, body, frames, self.steps, positions[:, i], orientations[:, i], amplitudes,
+                                 self.start[name])

@@ -91,11 +91,14 @@ def write_modes(obj, frames, amplitudes, shapes):
     return scales
 
 
-def write_body(obj, body, frames, steps, positions, orientations, amplitudes):
+def write_body(obj, body, frames, steps, positions, orientations, amplitudes, start):
+    """Keys a body's run on its object; `start` is its (location, rotation) before the bake, keyed as is
+    at the first frame (the run's first pose converted back would differ in the last bits)."""
     offset = scene_json.shape_offset(obj)
     poses = [coords.object_pose(p, q, *offset) for p, q in zip(positions, orientations)]
     locations = np.array([p[0] for p in poses])
-    rotations = coords.continuous([p[1] for p in poses])
+    locations[0] = start[0]
+    rotations = coords.continuous([start[1]] + [p[1] for p in poses[1:]])
     write_motion(obj, frames, locations, rotations)
     record = {"frames": list(frames), "steps": list(steps), "position": positions.ravel().tolist(),
               "orientation": orientations.ravel().tolist()}

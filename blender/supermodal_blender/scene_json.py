@@ -2,6 +2,7 @@
 """The scene file (docs/scene_format.md) of a Blender scene's supermodal bodies and constraints: the one
 description that both the bake and `supermodal run` step, so the two agree bit for bit."""
 import numpy as np
+from mathutils import Quaternion
 
 from . import constraints, coords
 from .errors import SceneBuildError
@@ -37,13 +38,19 @@ def object_transform(obj):
     scale = typed_list(obj.scale)
     if min(scale) <= 0.0:
         raise SceneBuildError(obj.name, f"scale must be positive, found {tuple(scale)}")
+    return typed_list(obj.location), coords.q_normalize(typed_list(stored_rotation(obj))), np.array(scale)
+
+
+def stored_rotation(obj):
+    """The object's rotation as the single-precision quaternion Blender holds or computes for it: the
+    bake keys exactly these numbers at the start frame, so a scene exported after a bake is the one the
+    bake stepped."""
     if obj.rotation_mode == "QUATERNION":
-        rotation = typed_list(obj.rotation_quaternion)
-    elif obj.rotation_mode == "AXIS_ANGLE":
-        rotation = [float(x) for x in obj.rotation_axis_angle.to_quaternion()]
-    else:
-        rotation = [float(x) for x in obj.rotation_euler.to_quaternion()]
-    return typed_list(obj.location), coords.q_normalize(rotation), np.array(scale)
+        return list(obj.rotation_quaternion)
+    if obj.rotation_mode == "AXIS_ANGLE":
+        angle, *axis = obj.rotation_axis_angle
+        return list(Quaternion(axis, angle))
+    return list(obj.rotation_euler.to_quaternion())
 
 
 def shape_json(obj):

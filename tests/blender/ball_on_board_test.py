@@ -29,6 +29,7 @@ def parse_args():
         parser.add_argument(name, required=True)
     parser.add_argument("--render", help="also render a frame to this PNG (docs/images)")
     parser.add_argument("--render-frame", type=int, default=25)
+    parser.add_argument("--exaggerate", type=float, default=1.0, help="draw the modes this many times larger")
     return parser.parse_args(argv)
 
 
@@ -266,8 +267,21 @@ def check_constraints(scene, sm):
     check(len(world.constraints) == 3, "the engine builds the three constraints")
 
 
-def render(scene, path, frame):
-    """Workbench (no GPU needed) at `frame`, objects in flat colours, from the front and a little above."""
+def exaggerate(obj, factor):
+    """Scales the mode shape keys' displacements by `factor`, for a picture (millimetres on a metre)."""
+    keys = obj.data.shape_keys.key_blocks
+    basis = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    keys[0].data.foreach_get("co", basis)
+    for block in keys[1:]:
+        co = np.empty_like(basis)
+        block.data.foreach_get("co", co)
+        block.data.foreach_set("co", basis + factor * (co - basis))
+
+
+def render(scene, path, frame, factor):
+    """Workbench (no GPU needed) at `frame`, objects in flat colours, from the front and a little above;
+    the board's modes drawn `factor` times their size."""
+    exaggerate(scene.objects["board"], factor)
     scene.frame_set(frame)
     cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam)
@@ -315,7 +329,7 @@ def main():
     check_ringing(scene)
     check_against_cli(scene, args)
     if args.render:
-        render(scene, args.render, args.render_frame)
+        render(scene, args.render, args.render_frame, args.exaggerate)
     check_constraints(scene, sm)
     print("all checks passed")
 
