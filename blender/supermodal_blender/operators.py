@@ -101,7 +101,7 @@ class SUPERMODAL_OT_bake(bpy.types.Operator):
             self.report({"WARNING"}, "bake cancelled: nothing was changed")
             return {"CANCELLED"}
         if event.type != "TIMER":
-            return {"PASS_THROUGH"}
+            return {"RUNNING_MODAL"}  # other input waits: an edit mid-bake would not match the run
         self._bake.advance(0.05)  # a slice short enough to keep Blender responsive
         context.window_manager.progress_update(self._bake.progress)
         if not self._bake.done:
