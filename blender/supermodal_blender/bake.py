@@ -32,7 +32,7 @@ def scene_error(doc, error):
         entries = doc.get(parts[1], [])
         if int(parts[2]) < len(entries):
             name = entries[int(parts[2])].get("name", name)
-    return SceneBuildError(name, f"{error} (at {error.pointer})")
+    return SceneBuildError(name, str(error))  # the message holds the pointer
 
 
 class Bake:

@@ -133,15 +133,20 @@ class SUPERMODAL_OT_clear_bake(bpy.types.Operator):
         return {"FINISHED"}
 
 
-def write_scene(scene, path):
-    """Writes the scene file of the start frame's poses (what a bake starts from) next to its final name,
-    then renames it: no half-written file."""
+def write_scene(scene, path, sm):
+    """Writes the scene file of the start frame's poses (what a bake starts from), once the engine has
+    accepted it, next to its final name, then renames it: no half-written file."""
     current = scene.frame_current
     scene.frame_set(scene.frame_start)
     try:
-        text = json.dumps(scene_json.scene_dict(scene), indent=2) + "\n"
+        doc = scene_json.scene_dict(scene)
     finally:
         scene.frame_set(current)
+    try:
+        sm.load_scene(doc)
+    except sm.SceneError as e:
+        raise bake.scene_error(doc, e) from None
+    text = json.dumps(doc, indent=2) + "\n"
     temporary = path + ".part"
     try:
         with open(temporary, "w", encoding="utf-8") as f:
@@ -161,8 +166,8 @@ class SUPERMODAL_OT_export_scene(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         try:
-            write_scene(context.scene, self.filepath)
-        except (SceneBuildError, OSError) as e:
+            write_scene(context.scene, self.filepath, engine.load(context))
+        except (engine.ModuleMissing, SceneBuildError, OSError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         self.report({"INFO"}, f"wrote {self.filepath}")

@@ -132,16 +132,22 @@ def check_cancel_writes_nothing(scene):
           "a bake that is not finished writes nothing")
 
 
-def check_bad_input(scene):
+def check_bad_input(scene, out):
+    """Refused by the add-on (a zero lattice count) or by the engine (more modes than the lattice has):
+    the bake and the export name the board, change nothing and write no file."""
     board = scene.objects["board"].supermodal
-    board.lattice = (16, 0, 1)
-    try:
-        bpy.ops.supermodal.bake()
-        raise AssertionError("a lattice with a zero count baked")
-    except RuntimeError as e:
-        check("board" in str(e) and "lattice" in str(e), f"a bad lattice is refused naming the body: {e}")
-    board.lattice = (16, 2, 1)
-    check(scene.objects["board"].animation_data is None, "the refused bake changed nothing")
+    exported = os.path.join(out, "refused.json")
+    for lattice, modes, expected in (((16, 0, 1), 8, "lattice"), ((1, 1, 1), 200, "/dynamics")):
+        board.lattice, board.modes = lattice, modes
+        for call in (bpy.ops.supermodal.bake, lambda: bpy.ops.supermodal.export_scene(filepath=exported)):
+            try:
+                call()
+                raise AssertionError(f"lattice {lattice} with {modes} modes was accepted")
+            except RuntimeError as e:
+                check("board" in str(e) and expected in str(e), f"refused naming the board: {e}")
+        check(scene.objects["board"].animation_data is None and not os.path.exists(exported),
+              "the refused bake and export changed nothing and wrote no file")
+    board.lattice, board.modes = (16, 2, 1), 8
 
 
 def fcurve_values(action, path, index):
@@ -316,7 +322,7 @@ def main():
     scene = build_scene()
     fit_ball(scene)
     check_cancel_writes_nothing(scene)
-    check_bad_input(scene)
+    check_bad_input(scene, args.out)
     before = os.path.join(args.out, "unbaked.blend")
     bpy.ops.wm.save_as_mainfile(filepath=before, copy=True)
     start = time.perf_counter()
