@@ -120,6 +120,40 @@ def fit_ball(scene):
           "the fit shows as a wire preview parented to the ball")
 
 
+class Layout:
+    """Stands in for a panel's layout (background mode draws no interface): every property and operator a
+    panel names must exist."""
+
+    def __init__(self):
+        self.names = []
+
+    def prop(self, data, name, **_):
+        assert name in data.bl_rna.properties, f"{data} has no property {name}"
+        self.names.append(name)
+
+    def operator(self, idname, **_):
+        category, name = idname.split(".")
+        assert hasattr(getattr(bpy.ops, category), name), f"no operator {idname}"
+        self.names.append(idname)
+
+    def label(self, **_):
+        pass
+
+    def column(self, **_):
+        return self
+
+
+def check_panels_draw(scene):
+    from types import SimpleNamespace
+    for obj in (scene.objects[n] for n in ("floor", "support_left", "board", "ball")):
+        bpy.context.view_layer.objects.active = obj
+        layout = Layout()
+        for panel in (bpy.types.SUPERMODAL_PT_body, bpy.types.SUPERMODAL_PT_material, bpy.types.SUPERMODAL_PT_world,
+                      bpy.types.SUPERMODAL_PT_bake):
+            panel.draw(SimpleNamespace(layout=layout), bpy.context)
+        check(len(layout.names) > 10, f"the panels draw for {obj.name} ({len(layout.names)} settings and buttons)")
+
+
 def check_cancel_writes_nothing(scene):
     """A bake stopped before its end (what Esc does) leaves no keyframe or shape key behind."""
     from supermodal_blender import bake, engine
@@ -321,6 +355,7 @@ def main():
     sm = engine.load(bpy.context)
     scene = build_scene()
     fit_ball(scene)
+    check_panels_draw(scene)
     check_cancel_writes_nothing(scene)
     check_bad_input(scene, args.out)
     before = os.path.join(args.out, "unbaked.blend")
