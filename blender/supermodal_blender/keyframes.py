@@ -46,10 +46,14 @@ def write_motion(obj, frames, locations, rotations):
 
 
 def clear_mode_keys(obj):
-    """Removes an earlier bake's mode shape keys (and the basis when nothing else is left)."""
+    """Removes an earlier bake's mode shape keys and their action (and the basis when nothing else is
+    left)."""
     keys = obj.data.shape_keys if obj.type == "MESH" else None
     if keys is None:
         return
+    if keys.animation_data is not None and keys.animation_data.action is not None \
+            and keys.animation_data.action.get(GROUP):
+        bpy.data.actions.remove(keys.animation_data.action)
     for block in [b for b in keys.key_blocks if b.name.startswith(MODE_KEY)]:
         obj.shape_key_remove(block)
     if len(keys.key_blocks) == 1:

@@ -272,6 +272,22 @@ def check_against_cli(scene, args):
     check(worst_key <= 1e-7, f"location keyframes equal the run's to single precision ({worst_key:.3g} m)")
 
 
+def check_rebake_and_clear(scene):
+    """A second bake replaces the first (same run, no doubled keys or actions); Clear bake removes it all."""
+    first = scene["supermodal_state_hash"]
+    actions = len(bpy.data.actions)
+    check(bpy.ops.supermodal.bake() == {"FINISHED"} and scene["supermodal_state_hash"] == first,
+          "a second bake from the baked scene runs the same (same end state hash)")
+    keys = scene.objects["board"].data.shape_keys.key_blocks
+    check(len(keys) == 9 and len(bpy.data.actions) == actions, "it replaces the keys and actions, not adds")
+    check(bpy.ops.supermodal.clear_bake() == {"FINISHED"}, "Clear bake runs")
+    for name in ("ball", "board"):
+        obj = scene.objects[name]
+        check((obj.animation_data is None or obj.animation_data.action is None)
+              and (obj.type != "MESH" or obj.data.shape_keys is None) and "supermodal_bake" not in obj,
+              f"{name}: no keyframes, mode shape keys or record left")
+
+
 def check_constraints(scene, sm):
     """Blender's Point, Hinge and Fixed constraints in the scene file, and the engine accepts them."""
     from supermodal_blender import scene_json
@@ -374,6 +390,7 @@ def main():
     check_against_cli(scene, args)
     if args.render:
         render(scene, args.render, args.render_frame, args.exaggerate)
+    check_rebake_and_clear(scene)
     check_constraints(scene, sm)
     print("all checks passed")
 
