@@ -94,9 +94,10 @@ class Bake:
         orientations = np.array(self.orientations)
         for i, name in enumerate(self.names):
             entry = self.doc["bodies"][i]
-            if entry["shape"]["type"] == "plane" or entry.get("motion") == "static":
-                continue
             obj = self.scene.objects[name]
+            if entry["shape"]["type"] == "plane" or entry.get("motion") == "static":
+                keyframes.clear_body(obj)  # it does not move: an earlier bake's keys would move it
+                continue
             body = self.bodies[i]
             amplitudes = np.array(self.amplitudes.get(name, np.zeros((len(frames), 0))))
             keyframes.write_body(obj, body, frames, self.steps, positions[:, i], orientations[:, i], amplitudes,

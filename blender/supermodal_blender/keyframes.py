@@ -25,11 +25,14 @@ def _fcurve(action, path, index, frames, values):
 
 
 def _new_action(owner, name):
-    """A fresh action on `owner` (an object or a shape-key block), replacing one an earlier bake made."""
+    """A fresh action on `owner` (an object or a shape-key block), replacing one an earlier bake made; an
+    action of the user's is kept in the file (fake user), only unassigned."""
     owner.animation_data_create()
     old = owner.animation_data.action
     if old is not None and old.get(GROUP):
         bpy.data.actions.remove(old)
+    elif old is not None:
+        old.use_fake_user = True
     action = bpy.data.actions.new(name)
     action[GROUP] = True
     owner.animation_data.action = action
@@ -58,6 +61,16 @@ def clear_mode_keys(obj):
         obj.shape_key_remove(block)
     if len(keys.key_blocks) == 1:
         obj.shape_key_remove(keys.key_blocks[0])
+
+
+def clear_body(obj):
+    """Removes what a bake wrote on an object: its action, mode shape keys and record."""
+    data = obj.animation_data
+    if data is not None and data.action is not None and data.action.get(GROUP):
+        bpy.data.actions.remove(data.action)
+    clear_mode_keys(obj)
+    if RECORD in obj:
+        del obj[RECORD]
 
 
 def rest_vertices(obj):
@@ -110,4 +123,6 @@ def write_body(obj, body, frames, steps, positions, orientations, amplitudes, st
         scales = write_modes(obj, frames, amplitudes, mode_displacements(obj, body))
         record["amplitudes"] = amplitudes.ravel().tolist()
         record["mode_scale"] = scales.tolist()
+    else:
+        clear_mode_keys(obj)  # a body that was modal in an earlier bake
     obj[RECORD] = record

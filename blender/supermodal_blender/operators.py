@@ -124,12 +124,7 @@ class SUPERMODAL_OT_clear_bake(bpy.types.Operator):
 
     def execute(self, context):
         for obj in scene_json.body_objects(context.scene):
-            if obj.animation_data is not None and obj.animation_data.action is not None \
-                    and obj.animation_data.action.get(keyframes.GROUP):
-                bpy.data.actions.remove(obj.animation_data.action)
-            keyframes.clear_mode_keys(obj)
-            if keyframes.RECORD in obj:
-                del obj[keyframes.RECORD]
+            keyframes.clear_body(obj)
         return {"FINISHED"}
 
 
