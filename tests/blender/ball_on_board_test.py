@@ -395,4 +395,5 @@ def main():
     print("all checks passed")
 
 
-main()
+if __name__ == "__main__":  # tests/blender/bake_ui_test.py imports the scene from here
+    main()
