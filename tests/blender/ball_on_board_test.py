@@ -241,9 +241,21 @@ def read_trace(path):
     return rows
 
 
+def check_schema(path):
+    """The exported file against docs/scene.schema.json (python3-jsonschema, Debian's, on Blender's path)."""
+    import jsonschema
+    here = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(here, "..", "..", "docs", "scene.schema.json")) as f:
+        schema = json.load(f)
+    with open(path) as f:
+        errors = [e.message for e in jsonschema.Draft7Validator(schema).iter_errors(json.load(f))]
+    check(not errors, f"the exported scene validates against docs/scene.schema.json {errors[:3]}")
+
+
 def check_against_cli(scene, args):
     exported = os.path.join(args.out, "ball_on_board_from_blender.json")
     check(bpy.ops.supermodal.export_scene(filepath=exported) == {"FINISHED"}, "Export scene writes the JSON")
+    check_schema(exported)
     trace, summary = os.path.join(args.out, "trace.csv"), os.path.join(args.out, "summary.json")
     subprocess.run([args.cli, "run", exported, "--csv", trace, "--csv-every", "1", "--json", summary, "--quiet"],
                    check=True)
