@@ -25,6 +25,7 @@ packages=(
   libspng-dev          # render/: PNG encoding (frame capture, screenshots)
   xvfb xauth           # tests/editor: the editor's window under a virtual X server (xvfb-run)
   libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri  # at run time: Mesa's EGL (surfaceless) and llvmpipe
+  blender              # tests/blender: the Blender add-on's test runs inside Blender 3.4 (Python 3.11)
   "$@"
 )
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <vector>
 
 namespace smpy
 {
@@ -196,6 +197,42 @@ py::array_t<double> modal_vector(const Body& b, bool rates)
     return out;
 }
 
+// Per mode, the displacement of each point for a unit amplitude: what an animation tool stores as one
+// shape key (morph target) per mode, driven by the amplitudes. (r, n, 3); (0, n, 3) for a rigid body.
+py::array_t<double> mode_shapes(const Body& b, const py::object& points_arg)
+{
+    const sm::Entity e = live(b);
+    py::array_t<double, py::array::c_style | py::array::forcecast> points;
+    try {
+        points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points_arg);
+    } catch (const py::error_already_set&) {
+    }
+    if (!points || points.ndim() != 2 || points.shape(1) != 3)
+        raise_type("points", "expected an (n, 3) array of numbers");
+    const py::ssize_t n = points.shape(0);
+    const auto p = points.unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i)
+        if (!std::isfinite(p(i, 0)) || !std::isfinite(p(i, 1)) || !std::isfinite(p(i, 2)))
+            raise_argument("points", "row " + std::to_string(i) + " is not finite");
+    const sm::ModalBasis* basis = sm::body_modal_basis(b.box->world, e);
+    const py::ssize_t r = basis == nullptr ? 0 : basis->mode_count;
+    py::array_t<double> out({r, n, py::ssize_t{3}});
+    auto o = out.mutable_unchecked<3>();
+    std::vector<double> unit(static_cast<size_t>(r), 0.0);
+    for (py::ssize_t i = 0; i < n && r > 0; ++i) {
+        const sm::LatticeWeights w = sm::modal_weights(*basis, {p(i, 0), p(i, 1), p(i, 2)});
+        for (py::ssize_t k = 0; k < r; ++k) {
+            unit[static_cast<size_t>(k)] = 1.0;
+            const sm::Vec3 d = sm::modal_displacement(*basis, w, unit);
+            unit[static_cast<size_t>(k)] = 0.0;
+            o(k, i, 0) = d.x;
+            o(k, i, 1) = d.y;
+            o(k, i, 2) = d.z;
+        }
+    }
+    return out;
+}
+
 } // namespace
 
 sm::Entity live(const Body& body)
@@ -297,6 +334,10 @@ max_plastic_strain [inf] > 0. Read-only once made.)")
     b.def_property_readonly(
         "modal_velocities", [](const Body& x) { return modal_vector(x, true); },
         "(r,) float64, read-only: modal rates [sqrt(kg)*m/s]; a copy as modal_amplitudes.");
+    b.def("mode_shapes", &mode_shapes, py::arg("points"),
+          "(r, n, 3) float64: per mode k, the displacement [m] of each rest point of `points` ((n, 3) [m], "
+          "shape frame) for q_k = 1 sqrt(kg)*m, shape frame; the deformed point is p + sum_k q_k "
+          "mode_shapes[k]. (0, n, 3) for a rigid body.");
     b.def(
         "apply_force",
         [](const Body& x, py::object force, py::object point) {
