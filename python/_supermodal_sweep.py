@@ -109,12 +109,14 @@ def sweep(scene, grid, client=None, *, n_workers=2, seconds=None):
     pointers = [pointer for pointer, _ in axes]
     points = [dict(zip(pointers, values)) for values in itertools.product(*(v for _, v in axes))]
     if client is not None:
+        if not (hasattr(client, "submit") and hasattr(client, "gather")):
+            raise _argument_error(f"expected a distributed.Client, got {type(client).__name__}", "client", True)
         return _run_all(client, scene, points, seconds)
     if not isinstance(n_workers, int) or isinstance(n_workers, bool) or n_workers < 1:
         raise _argument_error(f"expected an int >= 1, got {n_workers!r}", "n_workers")
     from distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
         with Client(cluster) as local:
             return _run_all(local, scene, points, seconds)
 

@@ -18,5 +18,5 @@ PYBIND11_MODULE(supermodal, m)
     smpy::register_assets(m);
     // Pure Python (python/_supermodal_sweep.py, installed beside this module): runs on Dask workers,
     // which import it by name.
-    m.attr("sweep") = py::module_::import("_supermodal_sweep").attr("sweep");
+    m.attr("sweep") = pybind11::module_::import("_supermodal_sweep").attr("sweep");
 }

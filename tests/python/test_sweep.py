@@ -17,7 +17,7 @@ REL = 1e-9
 
 @pytest.fixture(scope="module")
 def client():
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
         with Client(cluster) as c:
             yield c
 
@@ -112,3 +112,6 @@ def test_sweep_bad_types_are_argument_type_errors(projectile):
     with pytest.raises(sm.ArgumentError) as e:
         sm.sweep(projectile, {"/settings/dt": [0.1]}, seconds=0.0)
     assert e.value.argument == "seconds"
+    with pytest.raises(sm.ArgumentTypeError) as e:
+        sm.sweep(projectile, {"/settings/dt": [0.1]}, "tcp://127.0.0.1:8786")
+    assert e.value.argument == "client"
