@@ -50,7 +50,7 @@ def _check_grid(grid):
 
 def run_point(scene, overrides, seconds=None):
     """Loads `scene` with `overrides` ({pointer: value}) set, runs it for `seconds` (default: the scene's
-    duration) and returns its summary as a flat dict (the names `supermodal run` uses)."""
+    duration) and returns its summary: one row of sweep() (see there)."""
     import supermodal
 
     world = supermodal.load_scene(scene, overrides)

@@ -85,7 +85,7 @@ TEST(SceneOverrides, ApplyInOrderTheLastWins)
 
 TEST(SceneOverrides, ValuesAreValidatedLikeTheFile)
 {
-    EXPECT_TRUE(refused({{"/settings/dt", "-1"}}, "/settings/dt", "> 0"));
+    EXPECT_TRUE(refused({{"/settings/dt", "-1"}}, "/settings/dt", "expected a number in (0, 1]"));
     EXPECT_TRUE(refused({{"/settings/dt", "\"fast\""}}, "/settings/dt", "a string"));
     EXPECT_TRUE(refused({{"/bodies/0/material", "\"oak\""}}, "/bodies/0/material", "wood"));
     // A new member must be a key the format knows.
@@ -127,15 +127,16 @@ TEST(SceneOverrides, LoadSceneKeepsIncludesRelativeToTheFile)
     const auto dir = std::filesystem::temp_directory_path() / "supermodal_overrides_include";
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
-    std::ofstream(dir / "part.json") << R"({"bodies": [{"name": "b", "shape": {"type": "superquadric"}}]})";
+    std::ofstream(dir / "part.json")
+        << R"({"bodies": [{"name": "b", "shape": {"type": "superquadric", "radii": [1, 1, 1]}}]})";
     std::ofstream(dir / "main.json") << R"({"include": [{"file": "part.json", "prefix": "p_"}],
-      "bodies": [{"name": "a", "shape": {"type": "superquadric"}}]})";
+      "bodies": [{"name": "a", "shape": {"type": "superquadric", "radii": [1, 1, 1]}}]})";
     const std::vector<sm::SceneOverride> o = {{"/bodies/0/position", "[0, 2, 0]"}};
     const sm::Result<sm::Scene> scene = sm::load_scene((dir / "main.json").string(), o);
     ASSERT_TRUE(scene) << scene.error().message();
     ASSERT_EQ(scene->bodies.size(), 2u);
-    EXPECT_EQ(scene->bodies[0].name, "p_b");
-    EXPECT_EQ(scene->bodies[1].name, "a");
+    EXPECT_EQ(scene->bodies[0].def.name, "p_b");
+    EXPECT_EQ(scene->bodies[1].def.name, "a");
     EXPECT_EQ(scene->bodies[1].def.position.y, 2.0);
     EXPECT_EQ(scene->bodies[0].def.position.y, 0.0);
     std::filesystem::remove_all(dir);
