@@ -17,6 +17,7 @@ packages=(
   python3 python3-jsonschema   # tests/schema: the scene schema against the loader
   pybind11-dev python3-dev    # python/: the module supermodal (SUPERMODAL_PYTHON)
   python3-numpy python3-pytest  # python/: its arrays, and tests/python
+  python3-distributed  # python/: supermodal.sweep runs its grid on a Dask cluster (tests/python)
   libbenchmark-dev     # bench/
   gnuplot-nox          # `supermodal bench --out`: the speed/accuracy plot (PREFIX.png; skipped without it)
   libimgui-dev         # editor/: Dear ImGui (core library and backend sources)

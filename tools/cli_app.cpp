@@ -53,6 +53,7 @@ RunFlags add_run_command(CLI::App& app, RunOptions& run)
         ->check(CLI::Range(1, 16));
     f.cmd->add_option("--video", run.capture.video, "Also encode the frames into this .mp4 (needs ffmpeg)");
     f.cmd->add_flag("--quiet", run.quiet, "No progress bar (it is shown only on a terminal anyway)");
+    add_set_option(*f.cmd, run.sets);
     return f;
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cli_common.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +65,39 @@ nlohmann::json to_json(const Vec3& v)
 nlohmann::json to_json(const Quat& q)
 {
     return nlohmann::json::array({q.w, q.x, q.y, q.z});
+}
+
+std::string parse_set_options(const std::vector<std::string>& sets, std::vector<SceneOverride>& out)
+{
+    for (const std::string& set : sets) {
+        const size_t eq = set.find('=');
+        if (eq == std::string::npos)
+            return "--set " + set + ": expected /json/pointer=value, as in --set /settings/dt=0.001";
+        SceneOverride o{set.substr(0, eq), set.substr(eq + 1)};
+        // Not JSON: a plain word such as a material name, written as a JSON string. Bytes that are not
+        // UTF-8 become U+FFFD instead of an exception, as in json_text().
+        if (!nlohmann::json::accept(o.value))
+            o.value = nlohmann::json(o.value).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+        out.push_back(std::move(o));
+    }
+    return {};
+}
+
+Result<Scene> load_scene_with(const std::string& path, const std::vector<std::string>& sets)
+{
+    std::vector<SceneOverride> overrides;
+    if (std::string error = parse_set_options(sets, overrides); !error.empty())
+        return Error{"", "", error};
+    return load_scene(path, overrides);
+}
+
+void add_set_option(CLI::App& cmd, std::vector<std::string>& sets)
+{
+    cmd.add_option("--set", sets,
+                   "Set a scene value before it is checked: /json/pointer=value, the value JSON or else a "
+                   "string (--set /bodies/0/density=500); repeatable, applied in order")
+        ->allow_extra_args(false)
+        ->take_all();
 }
 
 const char* motion_name(MotionType motion)

@@ -8,6 +8,12 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+namespace CLI
+{
+class App;
+}
 
 namespace supermodal::cli
 {
@@ -32,6 +38,16 @@ void print_error(const std::string& message);
 [[nodiscard]] nlohmann::json to_json(const Quat& q);
 [[nodiscard]] const char* motion_name(MotionType motion);
 
+/// The --set options ("/json/pointer=value", split at the first '=') as scene overrides. The value is
+/// used as JSON when it parses as JSON ("2", "[0, 1, 0]", "true") and as a string otherwise ("steel").
+/// Returns an error message naming the option, or empty.
+[[nodiscard]] std::string parse_set_options(const std::vector<std::string>& sets,
+                                            std::vector<SceneOverride>& out);
+/// load_scene(path) with the --set options applied before validation.
+[[nodiscard]] Result<Scene> load_scene_with(const std::string& path, const std::vector<std::string>& sets);
+/// Registers a repeatable --set option filling `sets`.
+void add_set_option(CLI::App& cmd, std::vector<std::string>& sets);
+
 struct RunOptions {
     std::string scene;
     double seconds = 0.0; ///< Used when has_seconds.
@@ -42,8 +58,9 @@ struct RunOptions {
     std::string csv_out;
     int csv_every = 1;
     bool quiet = false;
-    int threads = 0;        ///< Overrides the scene's settings.threads when > 0.
-    CaptureOptions capture; ///< --frames/--video: rendered frames of the run.
+    int threads = 0;               ///< Overrides the scene's settings.threads when > 0.
+    CaptureOptions capture;        ///< --frames/--video: rendered frames of the run.
+    std::vector<std::string> sets; ///< --set /json/pointer=value, in order.
 };
 int run_command(const RunOptions& options);
 

@@ -204,6 +204,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o)
     cmd->add_flag("--fixed-contact", o.fixed_contact,
                   "Hold the contact frequency at the scene's 1/(10 h) in every run (the default ties it to "
                   "each run's substep, so a smaller dt also means stiffer contact)");
+    add_set_option(*cmd, o.sets);
     return cmd;
 }
 
@@ -214,7 +215,7 @@ int bench_command(const BenchOptions& o)
         print_error(e);
         return k_exit_bad_input;
     }
-    Result<Scene> scene = load_scene(o.scene);
+    Result<Scene> scene = load_scene_with(o.scene, o.sets);
     if (!scene) {
         print_error(scene.error().message());
         return k_exit_bad_input;

@@ -302,7 +302,7 @@ int run_command(const RunOptions& opt)
 {
     if (int rc = check_options(opt); rc != k_exit_ok)
         return rc;
-    Result<Scene> scene = load_scene(opt.scene);
+    Result<Scene> scene = load_scene_with(opt.scene, opt.sets);
     if (!scene) {
         print_error(scene.error().message());
         return k_exit_bad_input;

@@ -312,6 +312,9 @@ max_plastic_strain [inf] > 0. Read-only once made.)")
     b.def_property_readonly(
         "kinetic_energy", [](const Body& x) { return sm::body_kinetic_energy(x.box->world, live(x)); },
         "[J].");
+    b.def_property_readonly(
+        "potential_energy", [](const Body& x) { return sm::body_potential_energy(x.box->world, live(x)); },
+        "Gravitational potential energy -m g.x relative to the world origin [J]; 0 unless dynamic.");
     b.def_property_readonly("awake", [](const Body& x) { return sm::body_is_awake(x.box->world, live(x)); });
     b.def(
         "wake", [](const Body& x) { sm::wake_body(x.box->world, live(x)); },

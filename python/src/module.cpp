@@ -16,4 +16,7 @@ PYBIND11_MODULE(supermodal, m)
     smpy::register_events(m);
     smpy::register_scene(m);
     smpy::register_assets(m);
+    // Pure Python (python/_supermodal_sweep.py, installed beside this module): runs on Dask workers,
+    // which import it by name.
+    m.attr("sweep") = pybind11::module_::import("_supermodal_sweep").attr("sweep");
 }

@@ -244,6 +244,10 @@ A refused value raises ArgumentError naming the keyword and leaves the world unc
     c.def(
         "last_step_ms", [](const WorldBox& b) { return b.world.profile().total_ms; },
         "Wall time of the last step [ms], as the engine measured it.");
+    c.def(
+        "max_penetration", [](const WorldBox& b) { return sm::world_max_penetration(b.world); },
+        "Deepest contact penetration in the last step [m] (the per-step value `supermodal run` takes the "
+        "maximum of).");
 }
 
 } // namespace smpy

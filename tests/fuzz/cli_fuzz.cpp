@@ -4,7 +4,8 @@
 // that is cheap enough runs for real, in a private directory holding a small scene (s.json, a modal
 // board and a ball) and a mesh (m.obj), and must end with 0 or 2, never 1 (internal failure), a
 // crash, a hang or a sanitizer report. Not run: `bench` (a sweep is hundreds of runs), frame capture,
-// long runs; arguments with a '/' are skipped so every path stays inside the private directory.
+// long runs; arguments with a '/' are skipped so every path stays inside the private directory (so a
+// --set value never holds a JSON pointer here: tests/scene/overrides_test.cpp covers the pointers).
 #include "cli_app.h"
 
 #include <cmath>

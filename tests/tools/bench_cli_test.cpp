@@ -148,6 +148,11 @@ TEST(BenchCli, BadInputExitsTwoAndWritesNothing)
     // The ball scene has no modal body: a sweep of only the modal knobs has nothing to run.
     const Outcome modal = run_cli("bench " + scene + " --knobs modes --out " + prefix.string() + " 2>&1");
     EXPECT_EQ(modal.status, 2) << modal.output;
+    // --set as in `run`: the scene has two bodies, so /bodies/2 is not there to change.
+    const Outcome set =
+        run_cli("bench " + scene + " --set /bodies/2/position/0=1 --out " + prefix.string() + " 2>&1");
+    EXPECT_EQ(set.status, 2) << set.output;
+    EXPECT_NE(set.output.find("/bodies/2/position/0"), std::string::npos) << set.output;
     for (const char* ext : {".csv", ".md", ".png"})
         EXPECT_FALSE(fs::exists(prefix.string() + ext)) << ext;
     // Only the scene we wrote is left: no temporary files either.

@@ -81,6 +81,61 @@ TEST(Cli, BadFieldExitsTwoNamingThePointerAndWritesNothing)
     EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
+TEST(Cli, SetChangesTheSceneBeforeItIsRead)
+{
+    // projectile.json with dt 0.002 and launch velocity (3, 8, -1): 500 steps of the same closed form
+    // y = 10 + 8 t − g h² n(n+1)/2 as ProjectileSceneMatchesTheDiscreteClosedForm, to the same 1e-10 m.
+    // --set before the scene: each --set takes one argument, never the scene's.
+    const auto dir = temp_dir("set");
+    const Outcome o =
+        run_cli("run --set /settings/dt=0.002 --set '/bodies/0/velocity=[3, 8, -1]' " +
+                scene("projectile.json") + " --set /bodies/0/name=shot --json " + (dir / "s.json").string());
+    ASSERT_EQ(o.status, 0) << o.output;
+    const nlohmann::json s = read_json(dir / "s.json");
+    EXPECT_EQ(s["steps"], 500);
+    EXPECT_EQ(s["dt"], 0.002);
+    EXPECT_EQ(s["bodies"][0]["name"], "shot"); // not JSON, so taken as a string
+    const auto& p = s["bodies"][0]["position"];
+    const double h = 0.002, n = 500;
+    EXPECT_NEAR(p[0].get<double>(), 3.0, 1e-10);
+    EXPECT_NEAR(p[1].get<double>(), 10.0 + 8.0 - 9.81 * h * h * n * (n + 1) / 2, 1e-10);
+}
+
+TEST(Cli, SetBadPointerExitsTwoNamingItAndWritesNothing)
+{
+    const auto dir = temp_dir("set_pointer");
+    const std::string outputs = " --json " + (dir / "s.json").string() + " --csv " + (dir / "t.csv").string();
+    // projectile.json has one body: /bodies/1 is not there.
+    const Outcome missing =
+        run_cli("run " + scene("projectile.json") + " --set /bodies/1/position/0=1" + outputs);
+    EXPECT_EQ(missing.status, 2) << missing.output;
+    EXPECT_NE(missing.output.find("/bodies/1/position/0"), std::string::npos) << missing.output;
+    EXPECT_NE(missing.output.find("has 1 element"), std::string::npos) << missing.output;
+    const Outcome unknown = run_cli("run " + scene("projectile.json") + " --set /settings/dtt=0.1" + outputs);
+    EXPECT_EQ(unknown.status, 2) << unknown.output;
+    EXPECT_NE(unknown.output.find("/settings/dtt"), std::string::npos) << unknown.output;
+    const Outcome relative = run_cli("run " + scene("projectile.json") + " --set settings/dt=0.1" + outputs);
+    EXPECT_EQ(relative.status, 2) << relative.output;
+    EXPECT_NE(relative.output.find("settings/dt"), std::string::npos) << relative.output;
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(Cli, SetBadValueExitsTwoNamingThePointerAndWritesNothing)
+{
+    const auto dir = temp_dir("set_value");
+    const std::string outputs = " --json " + (dir / "s.json").string() + " --csv " + (dir / "t.csv").string();
+    const Outcome word = run_cli("run " + scene("projectile.json") + " --set /settings/dt=fast" + outputs);
+    EXPECT_EQ(word.status, 2) << word.output;
+    EXPECT_NE(word.output.find("/settings/dt"), std::string::npos) << word.output;
+    const Outcome negative = run_cli("run " + scene("projectile.json") + " --set /settings/dt=-1" + outputs);
+    EXPECT_EQ(negative.status, 2) << negative.output;
+    EXPECT_NE(negative.output.find("/settings/dt"), std::string::npos) << negative.output;
+    const Outcome no_value = run_cli("run " + scene("projectile.json") + " --set /settings/dt" + outputs);
+    EXPECT_EQ(no_value.status, 2) << no_value.output;
+    EXPECT_NE(no_value.output.find("--set /settings/dt"), std::string::npos) << no_value.output;
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
 TEST(Cli, TwoRunsPrintTheSameHash)
 {
     const Outcome a = run_cli("run " + scene("free_spin.json") + " --steps 500");

@@ -14,6 +14,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -95,11 +96,28 @@ struct Scene {
     CameraDef camera;                         ///< How renderers look at the scene (not physics).
 };
 
+/// A value put into the scene JSON before it is read (`supermodal run --set`), so that it is checked
+/// like the file's own values. The value at `pointer` is replaced; a missing member of an existing
+/// object is added. Applied to the file's own JSON (not to its includes), in order.
+struct SceneOverride {
+    /// JSON pointer (RFC 6901), "/materials/steel/density"; "~1" stands for "/" and "~0" for "~" in
+    /// a key. Array elements must exist (0 to size − 1); the parent of the target must exist.
+    std::string pointer;
+    std::string value; ///< JSON text of the value: "2.5", "[0, 1, 0]", "\"steel\"".
+};
+
 /// Reads and validates a scene file.
 [[nodiscard]] SM_API Result<Scene> load_scene(const std::string& path);
+/// Reads a scene file, applies the overrides to its JSON, then validates. An override that cannot be
+/// applied fails with Error::where = its pointer; the scene is not read.
+[[nodiscard]] SM_API Result<Scene> load_scene(const std::string& path,
+                                              std::span<const SceneOverride> overrides);
 /// Parses and validates scene JSON text; `source` names it in errors.
 [[nodiscard]] SM_API Result<Scene> parse_scene(std::string_view json_text,
                                                const std::string& source = "<string>");
+/// parse_scene with overrides applied before validation, as load_scene.
+[[nodiscard]] SM_API Result<Scene> parse_scene(std::string_view json_text, const std::string& source,
+                                               std::span<const SceneOverride> overrides);
 /// Makes a world holding the scene's bodies and then its constraints, created in file order.
 [[nodiscard]] SM_API Result<World> build_world(const Scene& scene);
 

@@ -6,6 +6,7 @@
 #include "scene/constraint_reader.h"
 #include "scene/json_reader.h"
 #include "scene/json_text.h"
+#include "scene/overrides.h"
 #include "supermodal/hierarchy.h"
 #include "supermodal/mesh_io.h"
 #include "supermodal/modal.h"
@@ -408,11 +409,14 @@ Result<Scene> read_scene(const Json& root, const std::string& source, IncludeCon
     return scene;
 }
 
-Result<Scene> parse_scene_in(std::string_view json_text, const std::string& source, IncludeContext ctx)
+Result<Scene> parse_scene_in(std::string_view json_text, const std::string& source, IncludeContext ctx,
+                             std::span<const SceneOverride> overrides)
 {
     Result<Json> json = scene_io::parse_json_text(json_text, source);
     if (!json)
         return json.error();
+    if (Status s = scene_io::apply_overrides(*json, overrides, source); !s)
+        return s.error();
     // The readers check every type before converting, so nothing here should throw; this keeps the
     // promise that no exception leaves the public API even if that ever stops being true.
     try {
@@ -426,20 +430,32 @@ Result<Scene> parse_scene_in(std::string_view json_text, const std::string& sour
 
 Result<Scene> load_scene(const std::string& path)
 {
+    return load_scene(path, {});
+}
+
+Result<Scene> load_scene(const std::string& path, std::span<const SceneOverride> overrides)
+{
     Result<std::string> text = read_file(path);
     if (!text)
         return text.error();
     std::error_code ec;
     const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
     IncludeContext ctx{std::filesystem::path(path).parent_path(), {ec ? path : canonical.string()}};
-    return parse_scene_in(*text, path, std::move(ctx));
+    return parse_scene_in(*text, path, std::move(ctx), overrides);
 }
 
 Result<Scene> parse_scene(std::string_view json_text, const std::string& source)
 {
+    return parse_scene(json_text, source, {});
+}
+
+Result<Scene> parse_scene(std::string_view json_text, const std::string& source,
+                          std::span<const SceneOverride> overrides)
+{
     std::error_code ec;
     std::filesystem::path cwd = std::filesystem::current_path(ec);
-    return parse_scene_in(json_text, source, IncludeContext{ec ? std::filesystem::path(".") : cwd, {}});
+    return parse_scene_in(json_text, source, IncludeContext{ec ? std::filesystem::path(".") : cwd, {}},
+                          overrides);
 }
 
 namespace
