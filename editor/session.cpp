@@ -19,6 +19,14 @@ Status EditorSession::load(const std::string& path)
 
 Status EditorSession::load_scene(Scene scene)
 {
+    Status status = install(std::move(scene));
+    if (status)
+        ++m_loads;
+    return status;
+}
+
+Status EditorSession::install(Scene scene)
+{
     Result<World> world = build_world(scene);
     if (!world)
         return world.error();
@@ -39,7 +47,7 @@ Status EditorSession::load_scene(Scene scene)
 Status EditorSession::reset()
 {
     const bool was_playing = m_playing;
-    Status status = load_scene(m_scene);
+    Status status = install(m_scene);
     m_playing = was_playing;
     return status;
 }
@@ -111,6 +119,7 @@ EditorSession& EditorSession::operator=(EditorSession&& other) noexcept
     m_steps_run = other.m_steps_run;
     m_playing = other.m_playing;
     m_generation = other.m_generation;
+    m_loads = other.m_loads;
     m_last_effect = other.m_last_effect;
     if (m_world)
         attach_step_listener();

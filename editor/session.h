@@ -127,6 +127,8 @@ class EditorSession
     [[nodiscard]] double ms_per_step() const;
     /// Counts loads and resets (a host re-frames its view on a change) [-].
     [[nodiscard]] uint64_t generation() const { return m_generation; }
+    /// Counts loads only: a reset keeps the view where the user put it, a new scene is framed [-].
+    [[nodiscard]] uint64_t loads() const { return m_loads; }
     /// Steps run since the last load or reset [-].
     [[nodiscard]] uint64_t steps_run() const { return m_steps_run; }
 
@@ -134,6 +136,7 @@ class EditorSession
     static constexpr size_t k_timing_window = 60;
 
   private:
+    Status install(Scene scene);
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
     void attach_step_listener();
@@ -169,6 +172,7 @@ class EditorSession
     bool m_step_pending = false; ///< A step ran whose time is not yet in m_step_ms.
     uint64_t m_steps_run = 0;
     uint64_t m_generation = 0;
+    uint64_t m_loads = 0;
 };
 
 /// The pointer with body and constraint names replaced by their indices in `scene`

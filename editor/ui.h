@@ -87,8 +87,9 @@ class EditorUi
     /// What the editor does with an event: ImGui's mouse for the next frame and `view_input`. A window's
     /// GLFW callbacks call these; headless, `input` calls them directly.
     void on_cursor(double x, double y);
-    void on_button(MouseButton b, bool down);
-    void on_key(EditorKey k, bool down);
+    void on_button(MouseButton b, bool down, uint8_t mods = k_mod_none);
+    void on_scroll(double notches);
+    void on_key(EditorKey k, bool down, uint8_t mods = k_mod_none);
     /// The host's events, as a script sends them. Headless (the default) they call on_*() and frame(); a
     /// window replaces them while it is open with its GLFW callback chain and its own frames.
     InputEvents input;
@@ -103,6 +104,10 @@ class EditorUi
     [[nodiscard]] int height() const { return m_height; }
     /// False: frames draw no window (a screenshot then shows the plain 3-D view).
     bool show_windows = true;
+    /// True: the Shortcuts window lists every mouse and key action over the 3-D view (H, F1).
+    bool show_help = false;
+    /// The Shortcuts window's lines in the last frame, as drawn (empty while it is hidden).
+    std::vector<std::string> help_lines;
 
     [[nodiscard]] const std::string& selected_body() const { return m_selected; }
     void select_body(const std::string& name) { m_selected = name; }
@@ -119,9 +124,11 @@ class EditorUi
     /// window, whose GLFW callbacks call those). False leaves ImGui's mouse to a platform backend.
     bool synthetic_mouse = true;
     /// The camera of the 3-D view and the mouse: the scene's camera with an absent target or distance
-    /// framed once per load or reset (editor_camera() in render_hook.h), so that the view stays put
-    /// while bodies move and a pixel means the same ray from frame to frame.
+    /// framed on a load (editor_camera() in camera.h), then moved only by the user or a re-framing, so
+    /// that the view stays put while bodies move and a pixel means the same ray from frame to frame.
     std::optional<CameraDef> view_camera;
+    bool view_moved = false;      ///< The user moved view_camera since it was framed.
+    uint64_t view_loads = 0;      ///< The session's loads() view_camera was framed for.
     uint64_t view_generation = 0; ///< The session generation view_camera was framed for.
     double view_aspect = 0.0;     ///< The 3-D view's width / height view_camera was framed for.
     /// The Speed / accuracy window's values in the last frame.
@@ -164,5 +171,6 @@ void draw_scene_tree(EditorUi& ui);
 void draw_body_window(EditorUi& ui);
 void draw_controls(EditorUi& ui);
 void draw_speed_accuracy(EditorUi& ui);
+void draw_help(EditorUi& ui); // ui_help.cpp
 
 } // namespace supermodal::editor

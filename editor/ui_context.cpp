@@ -63,8 +63,13 @@ void EditorUi::set_mouse(float x, float y, bool left_down)
 void EditorUi::headless_input()
 {
     input.cursor = [this](double x, double y) { on_cursor(x, y); };
-    input.button = [this](MouseButton b, bool down) { on_button(b, down); };
-    input.key = [this](EditorKey k, bool down) { on_key(k, down); };
+    input.button = [this](MouseButton b, bool down, uint8_t mods) { on_button(b, down, mods); };
+    input.scroll = [this](double notches) {
+        ImGui::SetCurrentContext(m_context);
+        ImGui::GetIO().MouseWheel += static_cast<float>(notches); // a window's ImGui backend does this
+        on_scroll(notches);
+    };
+    input.key = [this](EditorKey k, bool down, uint8_t mods) { on_key(k, down, mods); };
     input.frame = [this](double seconds) {
         frame(seconds);
         ImGui::SetCurrentContext(m_context);
@@ -78,19 +83,24 @@ void EditorUi::on_cursor(double x, double y)
     view_input.cursor(x, y);
 }
 
-void EditorUi::on_button(MouseButton b, bool down)
+void EditorUi::on_button(MouseButton b, bool down, uint8_t mods)
 {
     if (b == MouseButton::Left)
         m_mouse_down = down;
-    else
+    else if (b == MouseButton::Right)
         m_mouse_right = down;
-    view_input.button(b, down);
+    view_input.button(b, down, mods);
 }
 
-void EditorUi::on_key(EditorKey k, bool down)
+void EditorUi::on_scroll(double notches)
+{
+    view_input.scroll(notches);
+}
+
+void EditorUi::on_key(EditorKey k, bool down, uint8_t mods)
 {
     if (down)
-        view_input.key(k, *this);
+        view_input.key(k, *this, mods);
 }
 
 void EditorUi::host_frame(double real_seconds)
@@ -123,6 +133,9 @@ void EditorUi::frame(double real_seconds)
         draw_speed_accuracy(*this);
     }
     update_viewport();
+    help_lines.clear();
+    if (show_help)
+        draw_help(*this); // over the view, after the view's rectangle is known
     ImGui::Render();
     if (after_render)
         after_render();
@@ -167,9 +180,9 @@ Status EditorUi::press(const std::string& label)
     synthetic_mouse = true;
     input.cursor(x, y);
     host_frame(0.0);
-    input.button(MouseButton::Left, true);
+    input.button(MouseButton::Left, true, k_mod_none);
     host_frame(0.0);
-    input.button(MouseButton::Left, false);
+    input.button(MouseButton::Left, false, k_mod_none);
     host_frame(0.0);
     input.cursor(-FLT_MAX, -FLT_MAX);
     synthetic_mouse = was_synthetic;

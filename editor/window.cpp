@@ -87,7 +87,38 @@ constexpr std::pair<int, EditorKey> k_glfw_keys[] = {
     {GLFW_KEY_RIGHT, EditorKey::Right},
     {GLFW_KEY_UP, EditorKey::Up},
     {GLFW_KEY_DOWN, EditorKey::Down},
+    {GLFW_KEY_F, EditorKey::F},
+    {GLFW_KEY_HOME, EditorKey::Home},
+    {GLFW_KEY_EQUAL, EditorKey::Plus}, // '+' is Shift + '=' on most layouts
+    {GLFW_KEY_KP_ADD, EditorKey::Plus},
+    {GLFW_KEY_MINUS, EditorKey::Minus},
+    {GLFW_KEY_KP_SUBTRACT, EditorKey::Minus},
+    {GLFW_KEY_W, EditorKey::W},
+    {GLFW_KEY_A, EditorKey::A},
+    {GLFW_KEY_S, EditorKey::S},
+    {GLFW_KEY_D, EditorKey::D},
+    {GLFW_KEY_H, EditorKey::H},
+    {GLFW_KEY_F1, EditorKey::F1},
 };
+
+constexpr std::pair<int, MouseButton> k_glfw_buttons[] = {
+    {GLFW_MOUSE_BUTTON_LEFT, MouseButton::Left},
+    {GLFW_MOUSE_BUTTON_RIGHT, MouseButton::Right},
+    {GLFW_MOUSE_BUTTON_MIDDLE, MouseButton::Middle},
+};
+
+uint8_t editor_mods(int glfw_mods)
+{
+    return static_cast<uint8_t>(((glfw_mods & GLFW_MOD_SHIFT) != 0 ? k_mod_shift : 0) |
+                                ((glfw_mods & GLFW_MOD_CONTROL) != 0 ? k_mod_ctrl : 0) |
+                                ((glfw_mods & GLFW_MOD_ALT) != 0 ? k_mod_alt : 0));
+}
+
+int glfw_mods(uint8_t mods)
+{
+    return ((mods & k_mod_shift) != 0 ? GLFW_MOD_SHIFT : 0) |
+           ((mods & k_mod_ctrl) != 0 ? GLFW_MOD_CONTROL : 0) | ((mods & k_mod_alt) != 0 ? GLFW_MOD_ALT : 0);
+}
 
 /// The open window: its context, the view's texture, and one frame of its loop.
 struct WindowHost {
@@ -174,20 +205,28 @@ void on_cursor(GLFWwindow* window, double x, double y)
     h.ui.on_cursor(ux, uy);
 }
 
-void on_button(GLFWwindow* window, int button, int action, int /*mods*/)
+void on_button(GLFWwindow* window, int button, int action, int mods)
 {
-    if (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT)
-        host_of(window).ui.on_button(
-            button == GLFW_MOUSE_BUTTON_LEFT ? MouseButton::Left : MouseButton::Right, action == GLFW_PRESS);
+    for (const auto& [glfw, b] : k_glfw_buttons)
+        if (glfw == button)
+            host_of(window).ui.on_button(b, action == GLFW_PRESS, editor_mods(mods));
 }
 
-void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/)
+void on_scroll(GLFWwindow* window, double /*x*/, double y)
 {
-    if (action == GLFW_REPEAT)
-        return;
-    for (const auto& [glfw, k] : k_glfw_keys)
-        if (glfw == key)
-            host_of(window).ui.on_key(k, action == GLFW_PRESS);
+    host_of(window).ui.on_scroll(y);
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
+{
+    for (const auto& [glfw, k] : k_glfw_keys) {
+        // A held camera key repeats; a toggle (Tab, Space, H) does not flicker.
+        const bool repeats = k == EditorKey::Left || k == EditorKey::Right || k == EditorKey::Up ||
+                             k == EditorKey::Down || k == EditorKey::Plus || k == EditorKey::Minus ||
+                             k == EditorKey::W || k == EditorKey::A || k == EditorKey::S || k == EditorKey::D;
+        if (glfw == key && (action != GLFW_REPEAT || repeats))
+            host_of(window).ui.on_key(k, action != GLFW_RELEASE, editor_mods(mods));
+    }
 }
 
 /// A script's events, sent through the window's callback chain as GLFW would send them.
@@ -199,15 +238,20 @@ InputEvents window_events(WindowHost& h)
         ImGui_ImplGlfw_CursorEnterCallback(h.window, GLFW_TRUE); // the pointer is inside the window
         on_cursor(h.window, wx, wy);
     };
-    e.button = [&h](MouseButton b, bool down) {
-        ImGui_ImplGlfw_MouseButtonCallback(
-            h.window, b == MouseButton::Left ? GLFW_MOUSE_BUTTON_LEFT : GLFW_MOUSE_BUTTON_RIGHT,
-            down ? GLFW_PRESS : GLFW_RELEASE, 0);
+    e.button = [&h](MouseButton b, bool down, uint8_t mods) {
+        for (const auto& [glfw, button] : k_glfw_buttons)
+            if (button == b)
+                ImGui_ImplGlfw_MouseButtonCallback(h.window, glfw, down ? GLFW_PRESS : GLFW_RELEASE,
+                                                   glfw_mods(mods));
     };
-    e.key = [&h](EditorKey k, bool down) {
+    e.scroll = [&h](double notches) { ImGui_ImplGlfw_ScrollCallback(h.window, 0.0, notches); };
+    e.key = [&h](EditorKey k, bool down, uint8_t mods) {
         for (const auto& [glfw, key] : k_glfw_keys)
-            if (key == k)
-                ImGui_ImplGlfw_KeyCallback(h.window, glfw, 0, down ? GLFW_PRESS : GLFW_RELEASE, 0);
+            if (key == k) {
+                ImGui_ImplGlfw_KeyCallback(h.window, glfw, 0, down ? GLFW_PRESS : GLFW_RELEASE,
+                                           glfw_mods(mods));
+                return; // the first GLFW key of the editor's (Plus: '=' rather than the keypad's)
+            }
     };
     e.frame = [&h](double seconds) { h.frame(seconds); };
     return e;
@@ -276,6 +320,7 @@ int window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, 
     glfwSetWindowUserPointer(window, &host);
     glfwSetCursorPosCallback(window, on_cursor);
     glfwSetMouseButtonCallback(window, on_button);
+    glfwSetScrollCallback(window, on_scroll);
     glfwSetKeyCallback(window, on_key);
     ImGui::SetCurrentContext(ui.context());
     ImGui_ImplGlfw_InitForOpenGL(window, true); // chains to the callbacks above
