@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The Shortcuts window: every mouse and key action of the editor, over the middle of the 3-D view.
+// The Shortcuts window: every mouse and key action of the editor, in the 3-D view's top-left corner
+// (framed scenes sit in the middle of the view).
 #include "ui.h"
 
 #include <algorithm>
@@ -11,8 +12,8 @@ namespace supermodal::editor
 void draw_help(EditorUi& ui)
 {
     const ScreenRect& v = ui.viewport();
-    ImGui::SetNextWindowPos(ImVec2(0.5f * (v.x0 + v.x1), 0.5f * (v.y0 + v.y1)), ImGuiCond_Always,
-                            ImVec2(0.5f, 0.5f));
+    constexpr float k_inset = 8.0f; // [px] from the view's edges
+    ImGui::SetNextWindowPos(ImVec2(v.x0 + k_inset, v.y0 + k_inset), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.85f);
     if (!ImGui::Begin("Shortcuts", nullptr,
                       ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
@@ -24,9 +25,10 @@ void draw_help(EditorUi& ui)
     float column = 0.0f;
     for (const Shortcut& s : shortcuts())
         column = std::max(column, ImGui::CalcTextSize(s.input).x);
+    const float second = ImGui::GetCursorPosX() + column + 2.0f * ImGui::GetStyle().ItemSpacing.x;
     for (const Shortcut& s : shortcuts()) {
         ImGui::TextUnformatted(s.input);
-        ImGui::SameLine(column + 2.0f * ImGui::GetStyle().ItemSpacing.x);
+        ImGui::SameLine(second);
         ImGui::TextUnformatted(s.does);
         ui.help_lines.push_back(std::string(s.input) + ": " + s.does);
     }
