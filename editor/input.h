@@ -111,7 +111,8 @@ struct InputEvents {
     std::function<void(MouseButton, bool down, uint8_t mods)> button;
     std::function<void(double notches)> scroll; ///< The wheel turned (positive: away from the user).
     std::function<void(EditorKey, bool down, uint8_t mods)> key;
-    std::function<void(double seconds)> frame; ///< One frame of the host: the UI, the view, input.
+    std::function<void(int width, int height)> resize; ///< The display's new size [px] (a window resized).
+    std::function<void(double seconds)> frame;         ///< One frame of the host: the UI, the view, input.
 };
 
 } // namespace supermodal::editor

@@ -385,6 +385,24 @@ void run_key(const ActionContext& c)
     c.log << " " << name;
 }
 
+/// Resizes the display (a window: through GLFW, as a user dragging its corner), then runs a frame.
+void run_resize(const ActionContext& c)
+{
+    int size[2] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+        const char* key = i == 0 ? "width" : "height";
+        const Json& v = required(c.action, c.where, key);
+        if (!v.is_number_integer() || v.get<int64_t>() < 16 || v.get<int64_t>() > 16384)
+            fail(c.where + "/" + key, "expected an integer in [16, 16384] px, found " + kind_of(v));
+        size[i] = static_cast<int>(v.get<int64_t>());
+    }
+    if (!c.ui.input.resize)
+        fail(c.where, "this host cannot be resized");
+    c.ui.input.resize(size[0], size[1]);
+    c.ui.host_frame(0.0);
+    c.log << " " << c.ui.width() << "x" << c.ui.height();
+}
+
 /// Logs the 3-D view's rectangle in the last frame; with "min_fraction", checks its share of the display.
 void run_viewport(const ActionContext& c)
 {
@@ -504,6 +522,7 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"key", {{"key", "mods"}, run_key}},
     {"camera", {{"yaw_deg", "pitch_deg", "distance", "tolerance", "framed"}, run_camera}},
     {"viewport", {{"min_fraction"}, run_viewport}},
+    {"resize", {{"width", "height"}, run_resize}},
     {"save", {{"file", "state"}, run_save}},
 };
 

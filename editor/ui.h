@@ -54,11 +54,18 @@ struct ScreenRect {
 
 /// Where the panels dock for a display: a left column (Scene over Run) and a right column (Body over
 /// Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720
-/// display; each panel collapses to its title bar, and Tab hides them all.
+/// display; each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies
+/// the columns' pixel limits as it does the fonts.
 struct PanelLayout {
     ScreenRect scene, run, body, speed;
 };
-[[nodiscard]] PanelLayout panel_layout(float display_width, float display_height);
+[[nodiscard]] PanelLayout panel_layout(float display_width, float display_height, float scale = 1.0f);
+
+/// The UI scale a window needs: its content scale (glfwGetWindowContentScale) less what the platform
+/// already applies by counting window coordinates in larger units (framebuffer width / window width):
+/// 2 on an X11 or Windows screen at 200% (same units), 1 on macOS or Wayland at 200% (the framebuffer
+/// is twice the window). Within [0.5, 4]; 1 for sizes ≤ 0.
+[[nodiscard]] float hidpi_ui_scale(float content_scale, int window_width, int framebuffer_width);
 
 class EditorUi
 {
@@ -102,6 +109,12 @@ class EditorUi
     /// The display the UI is laid out for [px].
     [[nodiscard]] int width() const { return m_width; }
     [[nodiscard]] int height() const { return m_height; }
+    /// Lays the UI out for a display of width × height [px] (≥ 1) from the next frame: a resized window.
+    void resize(int width, int height);
+    /// Scales fonts, widget sizes and the panels' pixel limits by `scale` (clamped to [0.5, 4]) from the
+    /// next frame: a HiDPI screen (hidpi_ui_scale()).
+    void set_scale(float scale);
+    [[nodiscard]] float scale() const { return m_scale; }
     /// False: frames draw no window (a screenshot then shows the plain 3-D view).
     bool show_windows = true;
     /// True: the Shortcuts window lists every mouse and key action over the 3-D view (H, F1).
@@ -155,6 +168,7 @@ class EditorUi
     std::vector<WidgetRect> m_widgets;
     std::string m_last_error;
     int m_width = 1, m_height = 1;
+    float m_scale = 1.0f;
     float m_mouse_x = -1.0f, m_mouse_y = -1.0f;
     bool m_mouse_down = false, m_mouse_right = false;
     ScreenRect m_viewport;

@@ -12,8 +12,8 @@ namespace supermodal::editor
 void draw_help(EditorUi& ui)
 {
     const ScreenRect& v = ui.viewport();
-    constexpr float k_inset = 8.0f; // [px] from the view's edges
-    ImGui::SetNextWindowPos(ImVec2(v.x0 + k_inset, v.y0 + k_inset), ImGuiCond_Always);
+    const float inset = 8.0f * ui.scale(); // [px] from the view's edges
+    ImGui::SetNextWindowPos(ImVec2(v.x0 + inset, v.y0 + inset), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.85f);
     if (!ImGui::Begin("Shortcuts", nullptr,
                       ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |

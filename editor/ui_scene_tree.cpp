@@ -31,13 +31,13 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
             continue;
         const std::string& name = body.def.name;
         if (depth > 0)
-            ImGui::Indent(12.0f * static_cast<float>(depth));
+            ImGui::Indent(12.0f * ui.scale() * static_cast<float>(depth));
         const bool clicked = ImGui::Selectable(name.c_str(), ui.selected_body() == name);
         ui.track(name.c_str());
-        ImGui::SameLine(200.0f);
+        ImGui::SameLine(200.0f * ui.scale());
         ImGui::TextDisabled("%s", dynamics_tag(body));
         if (depth > 0)
-            ImGui::Unindent(12.0f * static_cast<float>(depth));
+            ImGui::Unindent(12.0f * ui.scale() * static_cast<float>(depth));
         if (clicked)
             ui.select_body(name);
         // Parents come before their children in a scene, so this recursion visits each body once.
@@ -49,7 +49,8 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
 
 void draw_scene_tree(EditorUi& ui)
 {
-    dock_next_window(panel_layout(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y).scene);
+    dock_next_window(
+        panel_layout(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y, ui.scale()).scene);
     if (ImGui::Begin("Scene")) {
         EditorSession& session = ui.session();
         if (!session.has_world()) {

@@ -123,7 +123,7 @@ int glfw_mods(uint8_t mods)
 /// The open window: its context, the view's texture, and one frame of its loop.
 struct WindowHost {
     GLFWwindow* window = nullptr;
-    Renderer& renderer;
+    Renderer renderer; ///< The 3-D view's, at the framebuffer's size (made again when it changes).
     EditorSession& session;
     EditorUi& ui;
     std::unique_ptr<ViewTexture> view = std::make_unique<ViewTexture>();
@@ -146,11 +146,44 @@ struct WindowHost {
         return {x * std::max(ww, 1) / ui.width(), y * std::max(wh, 1) / ui.height()};
     }
 
+    /// Follows the window: the UI laid out for its size in screen units and scaled for its content
+    /// scale, the 3-D view rendered at its framebuffer's size (its pixels: sharp on HiDPI). False while
+    /// it is minimised (nothing to draw).
+    bool follow_window_size()
+    {
+        int ww = 0, wh = 0, fw = 0, fh = 0;
+        glfwGetWindowSize(window, &ww, &wh);
+        glfwGetFramebufferSize(window, &fw, &fh);
+        if (ww <= 0 || wh <= 0 || fw <= 0 || fh <= 0)
+            return false;
+        if (ww != ui.width() || wh != ui.height())
+            ui.resize(ww, wh);
+        float xs = 1.0f, ys = 1.0f;
+        glfwGetWindowContentScale(window, &xs, &ys);
+        if (const float s = hidpi_ui_scale(xs, ww, fw); s != ui.scale())
+            ui.set_scale(s);
+        if (fw != image_width() || fh != image_height()) {
+            RenderDef def = renderer.settings();
+            def.width = std::clamp(fw, 16, 8192);
+            def.height = std::clamp(fh, 16, 8192);
+            if (Result<Renderer> resized = Renderer::create(def))
+                renderer = std::move(*resized);
+            else
+                ui.report(resized.error());
+            glfwMakeContextCurrent(window); // the new renderer made its own context current
+        }
+        return true;
+    }
+
     /// One frame: events, the 3-D view rendered offscreen and uploaded, the UI over it, the mouse's
     /// action in the view; `capture` gets the window's framebuffer before it is shown.
     void frame(double seconds, Image* capture = nullptr)
     {
         glfwPollEvents();
+        if (!follow_window_size()) {
+            glfwWaitEventsTimeout(0.1); // minimised: wait for it to come back
+            return;
+        }
         if (session.has_world()) {
             apply_scene_looks(renderer, session.scene(), session.world());
             // Only a failure is reported: a success would clear the error of a widget's action.
@@ -254,6 +287,17 @@ InputEvents window_events(WindowHost& h)
             }
     };
     e.frame = [&h](double seconds) { h.frame(seconds); };
+    e.resize = [&h](int width, int height) {
+        glfwSetWindowSize(h.window, width, height);
+        // The window system answers asynchronously: wait (at most 2 s) until it has the new size.
+        for (int i = 0; i < 40; ++i) {
+            int ww = 0, wh = 0;
+            glfwGetWindowSize(h.window, &ww, &wh);
+            if (ww == width && wh == height)
+                break;
+            glfwWaitEventsTimeout(0.05);
+        }
+    };
     return e;
 }
 
@@ -272,6 +316,8 @@ GLFWwindow* open_window(EditorUi& ui, WindowUnavailable& why)
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API); // libGLESv2 dispatches EGL contexts
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE); // a 1280x720 window as large on a 200% screen
     GLFWwindow* window = glfwCreateWindow(ui.width(), ui.height(), "supermodal-editor", nullptr, nullptr);
     if (window == nullptr) {
         glfwTerminate();
@@ -311,12 +357,12 @@ int window_session(WindowHost& h, const WindowRun& run)
 }
 
 // ImGui's GLFW and GL back ends, the editor's callbacks and the script's events live as long as this.
-int window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, EditorUi& ui,
+int window_loop(GLFWwindow* window, Renderer renderer, EditorSession& session, EditorUi& ui,
                 const WindowRun& run)
 {
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
-    WindowHost host{window, renderer, session, ui, std::make_unique<ViewTexture>(), Image{}};
+    WindowHost host{window, std::move(renderer), session, ui, std::make_unique<ViewTexture>(), Image{}};
     glfwSetWindowUserPointer(window, &host);
     glfwSetCursorPosCallback(window, on_cursor);
     glfwSetMouseButtonCallback(window, on_button);
@@ -366,7 +412,7 @@ int run_window(EditorSession& session, EditorUi& ui, const WindowRun& run, Windo
         why.message = renderer.error().message();
         return 2;
     }
-    const int status = window_loop(window, *renderer, session, ui, run);
+    const int status = window_loop(window, std::move(*renderer), session, ui, run);
     glfwDestroyWindow(window);
     glfwTerminate();
     return status;

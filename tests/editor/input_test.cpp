@@ -318,4 +318,73 @@ TEST(EditorCameraInput, HShowsTheShortcutListWithEveryBindingAndF1HidesIt)
     EXPECT_FALSE(ui.show_help);
     EXPECT_TRUE(ui.help_lines.empty());
 }
+
+TEST(EditorLayout, AResizedDisplayMovesThePanelsAndTheViewFollows)
+{
+    ed::EditorSession s;
+    ASSERT_TRUE(s.load(k_board));
+    ed::EditorUi ui(s, 1280, 720);
+    std::string log;
+    ASSERT_EQ(run(s, ui, R"({"action": "resize", "width": 960, "height": 540}, {"action": "viewport"})", &log)
+                  .failure,
+              ed::ScriptFailure::None)
+        << log;
+    // 960 px: the columns at their minimum widths (180 + 240 px), the view the 540 px between them.
+    EXPECT_NE(log.find("resize 960x540"), std::string::npos) << log;
+    EXPECT_NE(log.find("viewport 540x540 at (180, 0)"), std::string::npos) << log;
+    // The framing followed the new aspect (1:1): every body inside the view.
+    ok(s, ui, R"({"action": "camera", "framed": "all"})");
+    EXPECT_DOUBLE_EQ(ui.view_aspect, 1.0);
+    // Pixels are checked against the new size.
+    const ed::ScriptOutcome off = run(s, ui, R"({"action": "mouse", "x": 1000, "y": 20})");
+    EXPECT_EQ(off.failure, ed::ScriptFailure::BadScript);
+    EXPECT_NE(off.error.message().find("[0, 960]"), std::string::npos) << off.error.message();
+    const ed::ScriptOutcome bad = run(s, ui, R"({"action": "resize", "width": 8, "height": 540})");
+    EXPECT_EQ(bad.failure, ed::ScriptFailure::BadScript);
+    EXPECT_NE(bad.error.message().find("/width"), std::string::npos) << bad.error.message();
+    EXPECT_EQ(ui.width(), 960);
+}
+
+TEST(EditorLayout, TheHiDpiScaleDoublesFontsAndPanelsOnADoubleSizeDisplay)
+{
+    // X11 or Windows at 200%: window and framebuffer count the same pixels, so the UI scales by 2;
+    // macOS or Wayland at 200%: the framebuffer is twice the window, the coordinates already scale.
+    EXPECT_EQ(ed::hidpi_ui_scale(2.0f, 2560, 2560), 2.0f);
+    EXPECT_EQ(ed::hidpi_ui_scale(2.0f, 1280, 2560), 1.0f);
+    EXPECT_EQ(ed::hidpi_ui_scale(1.5f, 1000, 1000), 1.5f);
+    EXPECT_EQ(ed::hidpi_ui_scale(1.0f, 0, 0), 1.0f); // minimised
+    EXPECT_EQ(ed::hidpi_ui_scale(100.0f, 10, 10), 4.0f);
+    ed::EditorSession s;
+    ASSERT_TRUE(s.load(k_board));
+    ed::EditorUi small(s, 1280, 720), large(s, 2560, 1440);
+    large.set_scale(ed::hidpi_ui_scale(2.0f, 2560, 2560));
+    small.select_body("board");
+    large.select_body("board");
+    small.frame(0.0);
+    large.frame(0.0);
+    // The same layout at twice the pixels: every panel edge doubles (the columns' limits scale too).
+    const ed::PanelLayout a = ed::panel_layout(1280, 720), b = ed::panel_layout(2560, 1440, 2.0f);
+    for (const auto& [r1, r2] : {std::pair{a.scene, b.scene}, std::pair{a.run, b.run},
+                                 std::pair{a.body, b.body}, std::pair{a.speed, b.speed}}) {
+        EXPECT_FLOAT_EQ(r2.x0, 2 * r1.x0);
+        EXPECT_FLOAT_EQ(r2.x1, 2 * r1.x1);
+        EXPECT_FLOAT_EQ(r2.y0, 2 * r1.y0);
+        EXPECT_FLOAT_EQ(r2.y1, 2 * r1.y1);
+    }
+    EXPECT_FLOAT_EQ(large.viewport().x0, 2 * small.viewport().x0);
+    EXPECT_FLOAT_EQ(large.viewport().x1, 2 * small.viewport().x1);
+    // Text and padding double: the Play button is twice as tall and wide (ImGui rounds positions to
+    // whole pixels: 1 px), and a press by label finds it where the doubled layout put it.
+    const auto play = [](const ed::EditorUi& ui) {
+        for (const ed::WidgetRect& w : ui.widgets())
+            if (w.label == "Play")
+                return w;
+        return ed::WidgetRect{};
+    };
+    EXPECT_GT(play(small).max_y - play(small).min_y, 10.0f);
+    EXPECT_NEAR(play(large).max_y - play(large).min_y, 2.0f * (play(small).max_y - play(small).min_y), 1.0f);
+    EXPECT_NEAR(play(large).max_x - play(large).min_x, 2.0f * (play(small).max_x - play(small).min_x), 1.0f);
+    ok(s, large, R"({"action": "press", "widget": "Play"})");
+    EXPECT_TRUE(s.playing());
+}
 #endif
