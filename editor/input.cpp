@@ -19,7 +19,7 @@ namespace
 constexpr double k_mould_depth = 0.005;
 constexpr int k_mould_steps = 200;
 
-constexpr std::array<std::pair<const char*, EditorKey>, 19> k_key_names = {{
+constexpr std::array<std::pair<const char*, EditorKey>, 21> k_key_names = {{
     {"tab", EditorKey::Tab},
     {"space", EditorKey::Space},
     {"escape", EditorKey::Escape},
@@ -39,6 +39,8 @@ constexpr std::array<std::pair<const char*, EditorKey>, 19> k_key_names = {{
     {"d", EditorKey::D},
     {"h", EditorKey::H},
     {"f1", EditorKey::F1},
+    {"z", EditorKey::Z},
+    {"y", EditorKey::Y},
 }};
 
 constexpr Shortcut k_shortcuts[] = {
@@ -55,6 +57,8 @@ constexpr Shortcut k_shortcuts[] = {
     {"Space", "plays or pauses"},
     {"Tab", "hides or shows the panels"},
     {"Escape", "lets go of a dragged body"},
+    {"Ctrl + Z", "undoes the last edit"},
+    {"Ctrl + Shift + Z, Ctrl + Y", "redoes it"},
     {"H, F1", "shows or hides this list"},
 };
 
@@ -178,7 +182,7 @@ void ViewInput::scroll(double notches)
         m_wheel += notches;
 }
 
-void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t /*mods*/)
+void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t mods)
 {
     ImGuiContext* previous = ImGui::GetCurrentContext();
     ImGui::SetCurrentContext(ui.context());
@@ -206,6 +210,13 @@ void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t /*mods*/)
     case EditorKey::H:
     case EditorKey::F1:
         ui.show_help = !ui.show_help;
+        break;
+    case EditorKey::Z:
+    case EditorKey::Y:
+        if ((mods & k_mod_ctrl) != 0 && session.has_world()) {
+            const bool redo = k == EditorKey::Y || (mods & k_mod_shift) != 0;
+            ui.report(redo ? session.redo() : session.undo());
+        }
         break;
     default:
         if (session.has_world())

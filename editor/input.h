@@ -39,6 +39,8 @@ enum class EditorKey : uint8_t {
     D,     ///< Right.
     H,     ///< Shows or hides the shortcut list.
     F1,    ///< As H.
+    Z,     ///< With Ctrl: undoes the last edit; with Ctrl + Shift: redoes it.
+    Y,     ///< With Ctrl: redoes.
 };
 /// "tab", "space", ... (the enum's names in lower case); nothing for an unknown name.
 [[nodiscard]] std::optional<EditorKey> key_from_name(const std::string& name);

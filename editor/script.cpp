@@ -197,6 +197,20 @@ void run_reset(const ActionContext& c)
     check(c.session.reset(), c.where);
 }
 
+void run_undo(const ActionContext& c)
+{
+    check(c.session.undo(), c.where);
+    c.log << " (" << c.session.history_position() << " of " << c.session.history().size()
+          << " edits applied)";
+}
+
+void run_redo(const ActionContext& c)
+{
+    check(c.session.redo(), c.where);
+    c.log << " (" << c.session.history_position() << " of " << c.session.history().size()
+          << " edits applied)";
+}
+
 void run_press(const ActionContext& c)
 {
     const std::string widget = text(c.action, c.where, "widget");
@@ -511,6 +525,8 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"play", {{}, run_play}},
     {"pause", {{}, run_pause}},
     {"reset", {{}, run_reset}},
+    {"undo", {{}, run_undo}},
+    {"redo", {{}, run_redo}},
     {"press", {{"widget"}, run_press}},
     {"select", {{"body"}, run_select}},
     {"pick", {{"ray", "expect"}, run_pick}},

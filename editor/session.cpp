@@ -20,8 +20,11 @@ Status EditorSession::load(const std::string& path)
 Status EditorSession::load_scene(Scene scene)
 {
     Status status = install(std::move(scene));
-    if (status)
+    if (status) {
         ++m_loads;
+        m_history.clear(); // a new scene: the old one's edits mean nothing here
+        m_history_position = 0;
+    }
     return status;
 }
 
@@ -120,6 +123,8 @@ EditorSession& EditorSession::operator=(EditorSession&& other) noexcept
     m_playing = other.m_playing;
     m_generation = other.m_generation;
     m_loads = other.m_loads;
+    m_history = std::move(other.m_history);
+    m_history_position = other.m_history_position;
     m_last_effect = other.m_last_effect;
     if (m_world)
         attach_step_listener();

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace supermodal::editor
 {
@@ -49,6 +50,14 @@ struct DragSpring {
     double frequency_hz = 4.0;  ///< Natural frequency against the body's mass [Hz]: soft enough to
                                 ///< feel like a spring, far below the 1/(10·dt) stability cap.
     double damping_ratio = 0.7; ///< [-]; 0.7 settles without ringing.
+};
+
+/// One applied set(): enough to undo and redo it.
+struct SceneEdit {
+    std::string path;           ///< As given to set() (body names allowed).
+    std::string resolved;       ///< With indices: replayed after a rename too.
+    std::optional<Json> before; ///< The value there before; nothing when set() added the key.
+    Json after;                 ///< The value set.
 };
 
 class EditorSession
@@ -88,6 +97,17 @@ class EditorSession
     /// The current value at a path (same syntax as set), from the scene as it would be written.
     [[nodiscard]] Result<Json> get(std::string_view path) const;
     [[nodiscard]] SetEffect last_set_effect() const { return m_last_effect; }
+
+    /// Takes back the last applied edit (its value put back, or its key removed), as set() would apply
+    /// it; fails when there is nothing to undo. The world follows as for set().
+    Status undo();
+    /// Applies again the last undone edit; fails when there is none. A new set() drops the undone ones.
+    Status redo();
+    /// Every edit since the load, in order; the first history_position() of them are applied.
+    [[nodiscard]] const std::vector<SceneEdit>& history() const { return m_history; }
+    [[nodiscard]] size_t history_position() const { return m_history_position; }
+    /// Edits kept for undo; the oldest go first.
+    static constexpr size_t k_max_history = 1000;
 
     /// The first body the ray enters (rest shapes; planes included), or nothing.
     [[nodiscard]] std::optional<PickHit> pick(const Ray& ray) const;
@@ -137,6 +157,8 @@ class EditorSession
 
   private:
     Status install(Scene scene);
+    /// set() after the path is resolved; nothing for `value` removes the key.
+    Status apply_edit(const std::string& path, const std::string& resolved, const std::optional<Json>& value);
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
     void attach_step_listener();
@@ -173,6 +195,8 @@ class EditorSession
     uint64_t m_steps_run = 0;
     uint64_t m_generation = 0;
     uint64_t m_loads = 0;
+    std::vector<SceneEdit> m_history;
+    size_t m_history_position = 0;
 };
 
 /// The pointer with body and constraint names replaced by their indices in `scene`

@@ -45,6 +45,29 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
     }
 }
 
+/// The edits since the load, newest last; the undone ones greyed. Shown once there is an edit.
+void draw_history(EditorUi& ui)
+{
+    EditorSession& session = ui.session();
+    const std::vector<SceneEdit>& history = session.history();
+    if (history.empty() || !ImGui::CollapsingHeader("History", ImGuiTreeNodeFlags_DefaultOpen))
+        return;
+    if (ImGui::Button("Undo"))
+        ui.report(session.undo());
+    ui.track("Undo");
+    ImGui::SameLine();
+    if (ImGui::Button("Redo"))
+        ui.report(session.redo());
+    ui.track("Redo");
+    for (size_t i = 0; i < history.size(); ++i) {
+        const std::string line = history[i].path + " = " + history[i].after.dump();
+        if (i < session.history_position())
+            ImGui::TextUnformatted(line.c_str());
+        else
+            ImGui::TextDisabled("%s", line.c_str());
+    }
+}
+
 } // namespace
 
 void draw_scene_tree(EditorUi& ui)
@@ -65,6 +88,7 @@ void draw_scene_tree(EditorUi& ui)
                     ImGui::BulletText("%s: %s - %s", c.def.name.empty() ? "(unnamed)" : c.def.name.c_str(),
                                       c.body_a.c_str(), c.body_b.empty() ? "world" : c.body_b.c_str());
             }
+            draw_history(ui);
         }
     }
     ImGui::End();

@@ -99,6 +99,8 @@ constexpr std::pair<int, EditorKey> k_glfw_keys[] = {
     {GLFW_KEY_D, EditorKey::D},
     {GLFW_KEY_H, EditorKey::H},
     {GLFW_KEY_F1, EditorKey::F1},
+    {GLFW_KEY_Z, EditorKey::Z},
+    {GLFW_KEY_Y, EditorKey::Y},
 };
 
 constexpr std::pair<int, MouseButton> k_glfw_buttons[] = {
