@@ -277,6 +277,12 @@ TEST(EditorCameraInput, KeysOrbitZoomPanAndFrame)
                 0.0, 1e-9);
     const ed::ScriptOutcome board = run(s, ui, R"({"action": "camera", "framed": ["board"]})");
     EXPECT_EQ(board.failure, ed::ScriptFailure::CheckFailed);
+    // With the floor (a plane: no bounds) selected, F frames everything as Home does.
+    ok(s, ui, R"({"action": "key", "key": "home"})");
+    const double all = ed::editor_camera(s, ui).distance;
+    ok(s, ui, R"({"action": "select", "body": "ball"}, {"action": "key", "key": "f"},
+                 {"action": "select", "body": "floor"}, {"action": "key", "key": "f"})");
+    EXPECT_EQ(ed::editor_camera(s, ui).distance, all);
 }
 
 TEST(EditorCameraInput, AMovedCameraSurvivesResetAndTabButALoadFramesTheNewScene)
