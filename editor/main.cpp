@@ -80,7 +80,8 @@ int run_editor(const EditorArgs& a)
     }
     if (!a.screenshot.empty()) {
         ui.frame(0.0);
-        if (supermodal::Status status = render_screenshot(session, ui, a.screenshot, a.size[0], a.size[1]);
+        // The UI's size: --size, or what a script's resize made it.
+        if (supermodal::Status status = render_screenshot(session, ui, a.screenshot, ui.width(), ui.height());
             !status) {
             std::cerr << status.error().message() << "\n";
             return k_exit_bad_input;

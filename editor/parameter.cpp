@@ -155,16 +155,64 @@ Status EditorSession::set(std::string_view path, const Json& value)
     Result<std::string> resolved = resolve_scene_path(m_scene, path);
     if (!resolved)
         return resolved.error();
+    std::optional<Json> before;
+    if (Result<Json> old = get(*resolved))
+        before = *old;
+    if (Status status = apply_edit(std::string(path), *resolved, value); !status)
+        return status;
+    // Recorded after it applied: a refused value leaves no history.
+    m_history.resize(m_history_position);
+    m_history.push_back({std::string(path), *resolved, std::move(before), value});
+    if (m_history.size() > k_max_history)
+        m_history.erase(m_history.begin());
+    m_history_position = m_history.size();
+    return {};
+}
+
+Status EditorSession::undo()
+{
+    if (m_history_position == 0)
+        return Error{"", "", "nothing to undo"};
+    const SceneEdit& e = m_history[m_history_position - 1];
+    if (Status status = apply_edit(e.path, e.resolved, e.before); !status)
+        return status;
+    --m_history_position;
+    return {};
+}
+
+Status EditorSession::redo()
+{
+    if (m_history_position == m_history.size())
+        return Error{"", "", "nothing to redo"};
+    const SceneEdit& e = m_history[m_history_position];
+    if (Status status = apply_edit(e.path, e.resolved, e.after); !status)
+        return status;
+    ++m_history_position;
+    return {};
+}
+
+Status EditorSession::apply_edit(const std::string& path, const std::string& resolved,
+                                 const std::optional<Json>& value)
+{
     Result<Json> json = written_scene(m_scene);
     if (!json)
         return json.error();
-    Result<std::vector<std::string>> tokens = split_pointer(*resolved);
+    Result<std::vector<std::string>> tokens = split_pointer(resolved);
     if (tokens->empty() || (tokens->size() == 1 && (*tokens)[0].empty()))
-        return Error{"", std::string(path), "give the path of one value, not the whole scene"};
-    Result<Json*> node = locate(*json, *tokens, *resolved, /*create=*/true);
-    if (!node)
-        return node.error();
-    **node = value;
+        return Error{"", path, "give the path of one value, not the whole scene"};
+    if (value) {
+        Result<Json*> node = locate(*json, *tokens, resolved, /*create=*/true);
+        if (!node)
+            return node.error();
+        **node = *value;
+    } else {
+        // Undoing an edit that added a key: remove it again.
+        const std::vector<std::string> parent_tokens(tokens->begin(), tokens->end() - 1);
+        Result<Json*> parent = locate(*json, parent_tokens, resolved, /*create=*/false);
+        if (!parent || !(*parent)->is_object())
+            return Error{"", path, "cannot remove the value again"};
+        (*parent)->erase(tokens->back());
+    }
     Result<Scene> edited = parse_scene(json->dump(), m_scene.source);
     if (!edited)
         return edited.error();

@@ -31,18 +31,6 @@ void bind_font_texture(ImDrawData& data, ImTextureID font)
 
 } // namespace
 
-const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui)
-{
-    const ScreenRect& v = ui.viewport();
-    const double aspect = static_cast<double>(v.width()) / std::max(v.height(), 1.0f);
-    if (!ui.view_camera || ui.view_generation != session.generation() || ui.view_aspect != aspect) {
-        ui.view_camera = frame_bodies(session.world(), session.scene().camera, aspect);
-        ui.view_generation = session.generation();
-        ui.view_aspect = aspect;
-    }
-    return *ui.view_camera;
-}
-
 PixelRect view_rect(const EditorUi& ui, int width, int height)
 {
     const ScreenRect& v = ui.viewport();

@@ -3,6 +3,7 @@
 // the ImGui windows drawn over it, and rays through screen pixels for the mouse.
 #pragma once
 
+#include "camera.h"
 #include "session.h"
 #include "ui.h"
 
@@ -34,9 +35,6 @@ namespace supermodal::editor
                                                                 const Vec3& point);
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
-/// ui.view_camera, framed (frame_bodies at the 3-D view's aspect) when the session was loaded or reset
-/// since, or the view changed shape.
-[[nodiscard]] const CameraDef& editor_camera(const EditorSession& session, EditorUi& ui);
 /// The 3-D view's rectangle in an image of width × height showing the UI's display (scaled).
 [[nodiscard]] PixelRect view_rect(const EditorUi& ui, int width, int height);
 /// The screenshot's pixels (see render_screenshot).

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -196,6 +197,20 @@ void run_reset(const ActionContext& c)
     check(c.session.reset(), c.where);
 }
 
+void run_undo(const ActionContext& c)
+{
+    check(c.session.undo(), c.where);
+    c.log << " (" << c.session.history_position() << " of " << c.session.history().size()
+          << " edits applied)";
+}
+
+void run_redo(const ActionContext& c)
+{
+    check(c.session.redo(), c.where);
+    c.log << " (" << c.session.history_position() << " of " << c.session.history().size()
+          << " edits applied)";
+}
+
 void run_press(const ActionContext& c)
 {
     const std::string widget = text(c.action, c.where, "widget");
@@ -298,6 +313,30 @@ std::array<double, 2> mouse_pixel(const ActionContext& c)
     return *p;
 }
 
+/// "mods": a list of "shift", "ctrl", "alt" held with a button or key.
+uint8_t mods(const ActionContext& c)
+{
+    if (!c.action.contains("mods"))
+        return k_mod_none;
+    const Json& v = c.action.at("mods");
+    if (!v.is_array())
+        fail(c.where + "/mods", "expected a list of \"shift\", \"ctrl\", \"alt\", found " + kind_of(v));
+    uint8_t out = k_mod_none;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const std::string name = v[i].is_string() ? v[i].get<std::string>() : std::string();
+        if (name == "shift")
+            out |= k_mod_shift;
+        else if (name == "ctrl")
+            out |= k_mod_ctrl;
+        else if (name == "alt")
+            out |= k_mod_alt;
+        else
+            fail(c.where + "/mods/" + std::to_string(i),
+                 "expected \"shift\", \"ctrl\" or \"alt\", found " + kind_of(v[i]));
+    }
+    return out;
+}
+
 /// Mouse events as the host delivers them (a window: through its GLFW callbacks), then frames.
 void run_mouse(const ActionContext& c)
 {
@@ -310,15 +349,27 @@ void run_mouse(const ActionContext& c)
                                  kind_of(c.action.value("y", Json())));
     c.ui.input.cursor(x, y);
     c.log << " at (" << x << ", " << y << ")";
+    const uint8_t held = mods(c);
     if (c.action.contains("button")) {
         const std::string name = text(c.action, c.where, "button");
-        if (name != "left" && name != "right")
-            fail(c.where + "/button", R"(expected "left" or "right", found ")" + name + "\"");
+        if (name != "left" && name != "right" && name != "middle")
+            fail(c.where + "/button", R"(expected "left", "right" or "middle", found ")" + name + "\"");
         const Json& down = required(c.action, c.where, "down");
         if (!down.is_boolean())
             fail(c.where + "/down", "expected true or false, found " + kind_of(down));
-        c.ui.input.button(name == "left" ? MouseButton::Left : MouseButton::Right, down.get<bool>());
+        const MouseButton b = name == "left"    ? MouseButton::Left
+                              : name == "right" ? MouseButton::Right
+                                                : MouseButton::Middle;
+        c.ui.input.button(b, down.get<bool>(), held);
         c.log << " " << name << (down.get<bool>() ? " down" : " up");
+    }
+    if (c.action.contains("wheel")) {
+        const double notches = number(c.action, c.where, "wheel", 0.0);
+        if (!(notches != 0.0 && std::abs(notches) <= 100.0))
+            fail(c.where + "/wheel",
+                 "expected wheel notches in [-100, 100], not 0, found " + kind_of(c.action["wheel"]));
+        c.ui.input.scroll(notches);
+        c.log << " wheel " << notches;
     }
     const int n = count(c.action, c.where, "frames", 1);
     for (int i = 0; i < n; ++i)
@@ -340,11 +391,30 @@ void run_key(const ActionContext& c)
                                " + name + "
                                "; keys are: " +
                                    key_names());
-    c.ui.input.key(*key, true);
+    const uint8_t held = mods(c);
+    c.ui.input.key(*key, true, held);
     c.ui.host_frame(0.0);
-    c.ui.input.key(*key, false);
+    c.ui.input.key(*key, false, held);
     c.ui.host_frame(0.0);
     c.log << " " << name;
+}
+
+/// Resizes the display (a window: through GLFW, as a user dragging its corner), then runs a frame.
+void run_resize(const ActionContext& c)
+{
+    int size[2] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+        const char* key = i == 0 ? "width" : "height";
+        const Json& v = required(c.action, c.where, key);
+        if (!v.is_number_integer() || v.get<int64_t>() < 16 || v.get<int64_t>() > 16384)
+            fail(c.where + "/" + key, "expected an integer in [16, 16384] px, found " + kind_of(v));
+        size[i] = static_cast<int>(v.get<int64_t>());
+    }
+    if (!c.ui.input.resize)
+        fail(c.where, "this host cannot be resized");
+    c.ui.input.resize(size[0], size[1]);
+    c.ui.host_frame(0.0);
+    c.log << " " << c.ui.width() << "x" << c.ui.height();
 }
 
 /// Logs the 3-D view's rectangle in the last frame; with "min_fraction", checks its share of the display.
@@ -364,6 +434,61 @@ void run_viewport(const ActionContext& c)
                      std::to_string(min),
                  ScriptFailure::CheckFailed);
     }
+}
+
+/// Logs the view's camera; with "yaw_deg", "pitch_deg", "distance" checks them to "tolerance"; with
+/// "framed" checks that every corner of the named bodies' boxes ("all": every body) is drawn inside
+/// the 3-D view's rectangle.
+void run_camera(const ActionContext& c)
+{
+    const CameraDef& cam = editor_camera(c.session, c.ui);
+    const Vec3 t = cam.target.value_or(Vec3{});
+    c.log << std::setprecision(10) << " target " << vec_text(t) << " distance " << cam.distance << " yaw "
+          << cam.yaw_deg << " pitch " << cam.pitch_deg << std::setprecision(6);
+    const double tolerance = number(c.action, c.where, "tolerance", 1e-9);
+    for (const auto& [key, value] : {std::pair{"yaw_deg", cam.yaw_deg}, std::pair{"pitch_deg", cam.pitch_deg},
+                                     std::pair{"distance", cam.distance}})
+        if (c.action.contains(key) && !(std::abs(number(c.action, c.where, key, 0.0) - value) <= tolerance))
+            fail(c.where + "/" + key,
+                 "expected " + c.action[key].dump() + " to " + std::to_string(tolerance) +
+                     ", the camera has " + std::to_string(value),
+                 ScriptFailure::CheckFailed);
+    if (!c.action.contains("framed"))
+        return;
+    const Json& framed = c.action["framed"];
+    std::vector<Entity> bodies;
+    if (framed == "all") {
+        bodies = world_bodies(c.session.world());
+    } else {
+        if (!framed.is_array())
+            fail(c.where + "/framed", "expected \"all\" or a list of body names, found " + kind_of(framed));
+        for (size_t i = 0; i < framed.size(); ++i) {
+            const Entity e =
+                framed[i].is_string() ? find_body(c.session.world(), framed[i].get<std::string>()) : Entity{};
+            if (e.is_null())
+                fail(c.where + "/framed/" + std::to_string(i), "no body named " + kind_of(framed[i]));
+            bodies.push_back(e);
+        }
+    }
+    const ScreenRect& v = c.ui.viewport();
+    int checked = 0;
+    for (Entity e : bodies) {
+        const std::optional<Aabb> box = body_box(c.session.world(), e);
+        if (!box)
+            continue; // a plane has no bounds to frame
+        for (int k = 0; k < 8; ++k) {
+            const Vec3 corner{(k & 1) ? box->max.x : box->min.x, (k & 2) ? box->max.y : box->min.y,
+                              (k & 4) ? box->max.z : box->min.z};
+            const std::optional<ViewPixel> p = view_pixel(cam, v.width(), v.height(), corner);
+            if (!p || p->x < 0.0 || p->x > v.width() || p->y < 0.0 || p->y > v.height())
+                fail(c.where + "/framed",
+                     "a corner of \"" + body_name(c.session.world(), e) + "\"'s box, " + vec_text(corner) +
+                         ", is outside the 3-D view",
+                     ScriptFailure::CheckFailed);
+        }
+        ++checked;
+    }
+    c.log << ", " << checked << " bodies framed";
 }
 
 void run_windows(const ActionContext& c)
@@ -400,6 +525,8 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"play", {{}, run_play}},
     {"pause", {{}, run_pause}},
     {"reset", {{}, run_reset}},
+    {"undo", {{}, run_undo}},
+    {"redo", {{}, run_redo}},
     {"press", {{"widget"}, run_press}},
     {"select", {{"body"}, run_select}},
     {"pick", {{"ray", "expect"}, run_pick}},
@@ -407,9 +534,11 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"drag", {{"ray", "to", "steps", "x0", "y0", "x1", "y1"}, run_drag}},
     {"push", {{"ray", "force", "steps", "x", "y", "depth"}, run_push}},
     {"windows", {{"show"}, run_windows}},
-    {"mouse", {{"x", "y", "body", "button", "down", "frames", "expect"}, run_mouse}},
-    {"key", {{"key"}, run_key}},
+    {"mouse", {{"x", "y", "body", "button", "down", "mods", "wheel", "frames", "expect"}, run_mouse}},
+    {"key", {{"key", "mods"}, run_key}},
+    {"camera", {{"yaw_deg", "pitch_deg", "distance", "tolerance", "framed"}, run_camera}},
     {"viewport", {{"min_fraction"}, run_viewport}},
+    {"resize", {{"width", "height"}, run_resize}},
     {"save", {{"file", "state"}, run_save}},
 };
 

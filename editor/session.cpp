@@ -26,6 +26,17 @@ void EditorSession::share_bases(Scene& scene) const
 
 Status EditorSession::load_scene(Scene scene)
 {
+    Status status = install(std::move(scene));
+    if (status) {
+        ++m_loads;
+        m_history.clear(); // a new scene: the old one's edits mean nothing here
+        m_history_position = 0;
+    }
+    return status;
+}
+
+Status EditorSession::install(Scene scene)
+{
     share_bases(scene);
     Result<World> world = build_world(scene);
     if (!world)
@@ -47,7 +58,7 @@ Status EditorSession::load_scene(Scene scene)
 Status EditorSession::reset()
 {
     const bool was_playing = m_playing;
-    Status status = load_scene(m_scene);
+    Status status = install(m_scene);
     m_playing = was_playing;
     return status;
 }
@@ -119,6 +130,9 @@ EditorSession& EditorSession::operator=(EditorSession&& other) noexcept
     m_steps_run = other.m_steps_run;
     m_playing = other.m_playing;
     m_generation = other.m_generation;
+    m_loads = other.m_loads;
+    m_history = std::move(other.m_history);
+    m_history_position = other.m_history_position;
     m_last_effect = other.m_last_effect;
     if (m_world)
         attach_step_listener();

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace supermodal::editor
 {
@@ -50,6 +51,14 @@ struct DragSpring {
     double frequency_hz = 4.0;  ///< Natural frequency against the body's mass [Hz]: soft enough to
                                 ///< feel like a spring, far below the 1/(10·dt) stability cap.
     double damping_ratio = 0.7; ///< [-]; 0.7 settles without ringing.
+};
+
+/// One applied set(): enough to undo and redo it.
+struct SceneEdit {
+    std::string path;           ///< As given to set() (body names allowed).
+    std::string resolved;       ///< With indices: replayed after a rename too.
+    std::optional<Json> before; ///< The value there before; nothing when set() added the key.
+    Json after;                 ///< The value set.
 };
 
 class EditorSession
@@ -90,6 +99,17 @@ class EditorSession
     [[nodiscard]] Result<Json> get(std::string_view path) const;
     [[nodiscard]] SetEffect last_set_effect() const { return m_last_effect; }
 
+    /// Takes back the last applied edit (its value put back, or its key removed), as set() would apply
+    /// it; fails when there is nothing to undo. The world follows as for set().
+    Status undo();
+    /// Applies again the last undone edit; fails when there is none. A new set() drops the undone ones.
+    Status redo();
+    /// Every edit since the load, in order; the first history_position() of them are applied.
+    [[nodiscard]] const std::vector<SceneEdit>& history() const { return m_history; }
+    [[nodiscard]] size_t history_position() const { return m_history_position; }
+    /// Edits kept for undo; the oldest go first.
+    static constexpr size_t k_max_history = 1000;
+
     /// The first body the ray enters (rest shapes; planes included), or nothing.
     [[nodiscard]] std::optional<PickHit> pick(const Ray& ray) const;
     /// Grabs the picked point of a dynamic body with a spring; fails when the ray misses or the body
@@ -128,6 +148,8 @@ class EditorSession
     [[nodiscard]] double ms_per_step() const;
     /// Counts loads and resets (a host re-frames its view on a change) [-].
     [[nodiscard]] uint64_t generation() const { return m_generation; }
+    /// Counts loads only: a reset keeps the view where the user put it, a new scene is framed [-].
+    [[nodiscard]] uint64_t loads() const { return m_loads; }
     /// Steps run since the last load or reset [-].
     [[nodiscard]] uint64_t steps_run() const { return m_steps_run; }
 
@@ -136,6 +158,9 @@ class EditorSession
 
   private:
     void share_bases(Scene& scene) const;
+    Status install(Scene scene);
+    /// set() after the path is resolved; nothing for `value` removes the key.
+    Status apply_edit(const std::string& path, const std::string& resolved, const std::optional<Json>& value);
     Status rebuild_keeping_state(const Scene& edited);
     void apply_loads();
     void attach_step_listener();
@@ -174,6 +199,9 @@ class EditorSession
     bool m_step_pending = false; ///< A step ran whose time is not yet in m_step_ms.
     uint64_t m_steps_run = 0;
     uint64_t m_generation = 0;
+    uint64_t m_loads = 0;
+    std::vector<SceneEdit> m_history;
+    size_t m_history_position = 0;
 };
 
 /// The pointer with body and constraint names replaced by their indices in `scene`

@@ -54,11 +54,18 @@ struct ScreenRect {
 
 /// Where the panels dock for a display: a left column (Scene over Run) and a right column (Body over
 /// Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720
-/// display; each panel collapses to its title bar, and Tab hides them all.
+/// display; each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies
+/// the columns' pixel limits as it does the fonts.
 struct PanelLayout {
     ScreenRect scene, run, body, speed;
 };
-[[nodiscard]] PanelLayout panel_layout(float display_width, float display_height);
+[[nodiscard]] PanelLayout panel_layout(float display_width, float display_height, float scale = 1.0f);
+
+/// The UI scale a window needs: its content scale (glfwGetWindowContentScale) less what the platform
+/// already applies by counting window coordinates in larger units (framebuffer width / window width):
+/// 2 on an X11 or Windows screen at 200% (same units), 1 on macOS or Wayland at 200% (the framebuffer
+/// is twice the window). Within [0.5, 4]; 1 for sizes ≤ 0.
+[[nodiscard]] float hidpi_ui_scale(float content_scale, int window_width, int framebuffer_width);
 
 class EditorUi
 {
@@ -87,8 +94,9 @@ class EditorUi
     /// What the editor does with an event: ImGui's mouse for the next frame and `view_input`. A window's
     /// GLFW callbacks call these; headless, `input` calls them directly.
     void on_cursor(double x, double y);
-    void on_button(MouseButton b, bool down);
-    void on_key(EditorKey k, bool down);
+    void on_button(MouseButton b, bool down, uint8_t mods = k_mod_none);
+    void on_scroll(double notches);
+    void on_key(EditorKey k, bool down, uint8_t mods = k_mod_none);
     /// The host's events, as a script sends them. Headless (the default) they call on_*() and frame(); a
     /// window replaces them while it is open with its GLFW callback chain and its own frames.
     InputEvents input;
@@ -101,8 +109,18 @@ class EditorUi
     /// The display the UI is laid out for [px].
     [[nodiscard]] int width() const { return m_width; }
     [[nodiscard]] int height() const { return m_height; }
+    /// Lays the UI out for a display of width × height [px] (≥ 1) from the next frame: a resized window.
+    void resize(int width, int height);
+    /// Scales fonts, widget sizes and the panels' pixel limits by `scale` (clamped to [0.5, 4]) from the
+    /// next frame: a HiDPI screen (hidpi_ui_scale()).
+    void set_scale(float scale);
+    [[nodiscard]] float scale() const { return m_scale; }
     /// False: frames draw no window (a screenshot then shows the plain 3-D view).
     bool show_windows = true;
+    /// True: the Shortcuts window lists every mouse and key action over the 3-D view (H, F1).
+    bool show_help = false;
+    /// The Shortcuts window's lines in the last frame, as drawn (empty while it is hidden).
+    std::vector<std::string> help_lines;
 
     [[nodiscard]] const std::string& selected_body() const { return m_selected; }
     void select_body(const std::string& name) { m_selected = name; }
@@ -119,9 +137,11 @@ class EditorUi
     /// window, whose GLFW callbacks call those). False leaves ImGui's mouse to a platform backend.
     bool synthetic_mouse = true;
     /// The camera of the 3-D view and the mouse: the scene's camera with an absent target or distance
-    /// framed once per load or reset (editor_camera() in render_hook.h), so that the view stays put
-    /// while bodies move and a pixel means the same ray from frame to frame.
+    /// framed on a load (editor_camera() in camera.h), then moved only by the user or a re-framing, so
+    /// that the view stays put while bodies move and a pixel means the same ray from frame to frame.
     std::optional<CameraDef> view_camera;
+    bool view_moved = false;      ///< The user moved view_camera since it was framed.
+    uint64_t view_loads = 0;      ///< The session's loads() view_camera was framed for.
     uint64_t view_generation = 0; ///< The session generation view_camera was framed for.
     double view_aspect = 0.0;     ///< The 3-D view's width / height view_camera was framed for.
     /// The Speed / accuracy window's values in the last frame.
@@ -148,6 +168,7 @@ class EditorUi
     std::vector<WidgetRect> m_widgets;
     std::string m_last_error;
     int m_width = 1, m_height = 1;
+    float m_scale = 1.0f;
     float m_mouse_x = -1.0f, m_mouse_y = -1.0f;
     bool m_mouse_down = false, m_mouse_right = false;
     ScreenRect m_viewport;
@@ -164,5 +185,6 @@ void draw_scene_tree(EditorUi& ui);
 void draw_body_window(EditorUi& ui);
 void draw_controls(EditorUi& ui);
 void draw_speed_accuracy(EditorUi& ui);
+void draw_help(EditorUi& ui); // ui_help.cpp
 
 } // namespace supermodal::editor

@@ -91,9 +91,9 @@ void draw_dynamics(EditorUi& ui, const std::string& base, const SceneBody& body)
 void draw_body_window(EditorUi& ui)
 {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    dock_next_window(panel_layout(display.x, display.y).body);
+    dock_next_window(panel_layout(display.x, display.y, ui.scale()).body);
     if (ImGui::Begin("Body")) {
-        ImGui::PushItemWidth(-110.0f); // room for the labels in the narrow column
+        ImGui::PushItemWidth(-110.0f * ui.scale()); // room for the labels in the narrow column
         EditorSession& session = ui.session();
         const Scene* scene = session.has_world() ? &session.scene() : nullptr;
         size_t index = 0;

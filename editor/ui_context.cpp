@@ -53,6 +53,31 @@ EditorUi::~EditorUi()
     ImGui::DestroyContext(m_context);
 }
 
+void EditorUi::resize(int width, int height)
+{
+    m_width = std::max(width, 1);
+    m_height = std::max(height, 1);
+    ImGuiContext* previous = ImGui::GetCurrentContext();
+    ImGui::SetCurrentContext(m_context);
+    ImGui::GetIO().DisplaySize = ImVec2(static_cast<float>(m_width), static_cast<float>(m_height));
+    ImGui::SetCurrentContext(previous);
+}
+
+void EditorUi::set_scale(float scale)
+{
+    m_scale = std::clamp(scale, 0.5f, 4.0f);
+    ImGuiContext* previous = ImGui::GetCurrentContext();
+    ImGui::SetCurrentContext(m_context);
+    // From the unscaled style each time, so that scales do not compound.
+    ImGuiStyle style;
+    ImGui::StyleColorsDark(&style);
+    style.ScaleAllSizes(m_scale);
+    ImGui::GetStyle() = style;
+    // The atlas's 13 px font drawn larger: a little soft, with no atlas to rebuild and re-upload.
+    ImGui::GetIO().FontGlobalScale = m_scale;
+    ImGui::SetCurrentContext(previous);
+}
+
 void EditorUi::set_mouse(float x, float y, bool left_down)
 {
     m_mouse_x = x;
@@ -63,8 +88,14 @@ void EditorUi::set_mouse(float x, float y, bool left_down)
 void EditorUi::headless_input()
 {
     input.cursor = [this](double x, double y) { on_cursor(x, y); };
-    input.button = [this](MouseButton b, bool down) { on_button(b, down); };
-    input.key = [this](EditorKey k, bool down) { on_key(k, down); };
+    input.button = [this](MouseButton b, bool down, uint8_t mods) { on_button(b, down, mods); };
+    input.scroll = [this](double notches) {
+        ImGui::SetCurrentContext(m_context);
+        ImGui::GetIO().MouseWheel += static_cast<float>(notches); // a window's ImGui backend does this
+        on_scroll(notches);
+    };
+    input.key = [this](EditorKey k, bool down, uint8_t mods) { on_key(k, down, mods); };
+    input.resize = [this](int w, int h) { resize(w, h); };
     input.frame = [this](double seconds) {
         frame(seconds);
         ImGui::SetCurrentContext(m_context);
@@ -78,19 +109,24 @@ void EditorUi::on_cursor(double x, double y)
     view_input.cursor(x, y);
 }
 
-void EditorUi::on_button(MouseButton b, bool down)
+void EditorUi::on_button(MouseButton b, bool down, uint8_t mods)
 {
     if (b == MouseButton::Left)
         m_mouse_down = down;
-    else
+    else if (b == MouseButton::Right)
         m_mouse_right = down;
-    view_input.button(b, down);
+    view_input.button(b, down, mods);
 }
 
-void EditorUi::on_key(EditorKey k, bool down)
+void EditorUi::on_scroll(double notches)
+{
+    view_input.scroll(notches);
+}
+
+void EditorUi::on_key(EditorKey k, bool down, uint8_t mods)
 {
     if (down)
-        view_input.key(k, *this);
+        view_input.key(k, *this, mods);
 }
 
 void EditorUi::host_frame(double real_seconds)
@@ -123,6 +159,9 @@ void EditorUi::frame(double real_seconds)
         draw_speed_accuracy(*this);
     }
     update_viewport();
+    help_lines.clear();
+    if (show_help)
+        draw_help(*this); // over the view, after the view's rectangle is known
     ImGui::Render();
     if (after_render)
         after_render();
@@ -167,9 +206,9 @@ Status EditorUi::press(const std::string& label)
     synthetic_mouse = true;
     input.cursor(x, y);
     host_frame(0.0);
-    input.button(MouseButton::Left, true);
+    input.button(MouseButton::Left, true, k_mod_none);
     host_frame(0.0);
-    input.button(MouseButton::Left, false);
+    input.button(MouseButton::Left, false, k_mod_none);
     host_frame(0.0);
     input.cursor(-FLT_MAX, -FLT_MAX);
     synthetic_mouse = was_synthetic;
@@ -191,13 +230,14 @@ void EditorUi::apply(const std::string& path, const Json& value)
 namespace supermodal::editor
 {
 
-PanelLayout panel_layout(float w, float h)
+PanelLayout panel_layout(float w, float h, float scale)
 {
     // Columns a sixth and a fifth of the width, within what their widgets need: 211 + 269 px at 1280,
     // which leaves the view 800 px of 1280 (62.5%). Run is as tall as its widgets.
-    const float left = std::clamp(0.165f * w, 180.0f, 300.0f);
-    const float right = std::clamp(0.21f * w, 240.0f, 420.0f);
-    const float run = std::min(150.0f, 0.4f * h);
+    const float s = std::clamp(scale, 0.5f, 4.0f);
+    const float left = std::clamp(0.165f * w, 180.0f * s, 300.0f * s);
+    const float right = std::clamp(0.21f * w, 240.0f * s, 420.0f * s);
+    const float run = std::min(150.0f * s, 0.4f * h);
     const float body = 0.55f * h;
     PanelLayout l;
     l.scene = {0, 0, left, h - run};
@@ -205,6 +245,14 @@ PanelLayout panel_layout(float w, float h)
     l.body = {w - right, 0, w, body};
     l.speed = {w - right, body, w, h};
     return l;
+}
+
+float hidpi_ui_scale(float content_scale, int window_width, int framebuffer_width)
+{
+    if (window_width <= 0 || framebuffer_width <= 0 || !(content_scale > 0.0f))
+        return 1.0f;
+    const float applied = static_cast<float>(framebuffer_width) / static_cast<float>(window_width);
+    return std::clamp(content_scale / applied, 0.5f, 4.0f);
 }
 
 void dock_next_window(const ScreenRect& r)

@@ -116,7 +116,7 @@ void draw_modal_readout(EditorUi& ui)
 void draw_controls(EditorUi& ui)
 {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    dock_next_window(panel_layout(display.x, display.y).run);
+    dock_next_window(panel_layout(display.x, display.y, ui.scale()).run);
     if (ImGui::Begin("Run")) {
         EditorSession& s = ui.session();
         if (button(ui, "Play"))
@@ -149,7 +149,7 @@ void draw_speed_accuracy(EditorUi& ui)
 {
     ui.speed_accuracy = SpeedAccuracyReadout{};
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    dock_next_window(panel_layout(display.x, display.y).speed);
+    dock_next_window(panel_layout(display.x, display.y, ui.scale()).speed);
     if (ImGui::Begin("Speed / accuracy")) {
         EditorSession& s = ui.session();
         if (!s.has_world()) {
@@ -158,7 +158,7 @@ void draw_speed_accuracy(EditorUi& ui)
             return;
         }
         ui.speed_accuracy.shown = true;
-        ImGui::PushItemWidth(-110.0f); // room for the labels in the narrow column
+        ImGui::PushItemWidth(-110.0f * ui.scale()); // room for the labels in the narrow column
         // A copy: an applied edit replaces the session's scene and world while this window is drawn.
         const WorldDef w = s.scene().world;
         draw_speed_knobs(ui, w);

@@ -31,13 +31,13 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
             continue;
         const std::string& name = body.def.name;
         if (depth > 0)
-            ImGui::Indent(12.0f * static_cast<float>(depth));
+            ImGui::Indent(12.0f * ui.scale() * static_cast<float>(depth));
         const bool clicked = ImGui::Selectable(name.c_str(), ui.selected_body() == name);
         ui.track(name.c_str());
-        ImGui::SameLine(200.0f);
+        ImGui::SameLine(200.0f * ui.scale());
         ImGui::TextDisabled("%s", dynamics_tag(body));
         if (depth > 0)
-            ImGui::Unindent(12.0f * static_cast<float>(depth));
+            ImGui::Unindent(12.0f * ui.scale() * static_cast<float>(depth));
         if (clicked)
             ui.select_body(name);
         // Parents come before their children in a scene, so this recursion visits each body once.
@@ -45,11 +45,35 @@ void draw_subtree(EditorUi& ui, const Scene& scene, const std::string& parent, i
     }
 }
 
+/// The edits since the load, newest last; the undone ones greyed. Shown once there is an edit.
+void draw_history(EditorUi& ui)
+{
+    EditorSession& session = ui.session();
+    const std::vector<SceneEdit>& history = session.history();
+    if (history.empty() || !ImGui::CollapsingHeader("History", ImGuiTreeNodeFlags_DefaultOpen))
+        return;
+    if (ImGui::Button("Undo"))
+        ui.report(session.undo());
+    ui.track("Undo");
+    ImGui::SameLine();
+    if (ImGui::Button("Redo"))
+        ui.report(session.redo());
+    ui.track("Redo");
+    for (size_t i = 0; i < history.size(); ++i) {
+        const std::string line = history[i].path + " = " + history[i].after.dump();
+        if (i < session.history_position())
+            ImGui::TextUnformatted(line.c_str());
+        else
+            ImGui::TextDisabled("%s", line.c_str());
+    }
+}
+
 } // namespace
 
 void draw_scene_tree(EditorUi& ui)
 {
-    dock_next_window(panel_layout(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y).scene);
+    dock_next_window(
+        panel_layout(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y, ui.scale()).scene);
     if (ImGui::Begin("Scene")) {
         EditorSession& session = ui.session();
         if (!session.has_world()) {
@@ -64,6 +88,7 @@ void draw_scene_tree(EditorUi& ui)
                     ImGui::BulletText("%s: %s - %s", c.def.name.empty() ? "(unnamed)" : c.def.name.c_str(),
                                       c.body_a.c_str(), c.body_b.empty() ? "world" : c.body_b.c_str());
             }
+            draw_history(ui);
         }
     }
     ImGui::End();

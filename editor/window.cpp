@@ -87,12 +87,45 @@ constexpr std::pair<int, EditorKey> k_glfw_keys[] = {
     {GLFW_KEY_RIGHT, EditorKey::Right},
     {GLFW_KEY_UP, EditorKey::Up},
     {GLFW_KEY_DOWN, EditorKey::Down},
+    {GLFW_KEY_F, EditorKey::F},
+    {GLFW_KEY_HOME, EditorKey::Home},
+    {GLFW_KEY_EQUAL, EditorKey::Plus}, // '+' is Shift + '=' on most layouts
+    {GLFW_KEY_KP_ADD, EditorKey::Plus},
+    {GLFW_KEY_MINUS, EditorKey::Minus},
+    {GLFW_KEY_KP_SUBTRACT, EditorKey::Minus},
+    {GLFW_KEY_W, EditorKey::W},
+    {GLFW_KEY_A, EditorKey::A},
+    {GLFW_KEY_S, EditorKey::S},
+    {GLFW_KEY_D, EditorKey::D},
+    {GLFW_KEY_H, EditorKey::H},
+    {GLFW_KEY_F1, EditorKey::F1},
+    {GLFW_KEY_Z, EditorKey::Z},
+    {GLFW_KEY_Y, EditorKey::Y},
 };
+
+constexpr std::pair<int, MouseButton> k_glfw_buttons[] = {
+    {GLFW_MOUSE_BUTTON_LEFT, MouseButton::Left},
+    {GLFW_MOUSE_BUTTON_RIGHT, MouseButton::Right},
+    {GLFW_MOUSE_BUTTON_MIDDLE, MouseButton::Middle},
+};
+
+uint8_t editor_mods(int glfw_mods)
+{
+    return static_cast<uint8_t>(((glfw_mods & GLFW_MOD_SHIFT) != 0 ? k_mod_shift : 0) |
+                                ((glfw_mods & GLFW_MOD_CONTROL) != 0 ? k_mod_ctrl : 0) |
+                                ((glfw_mods & GLFW_MOD_ALT) != 0 ? k_mod_alt : 0));
+}
+
+int glfw_mods(uint8_t mods)
+{
+    return ((mods & k_mod_shift) != 0 ? GLFW_MOD_SHIFT : 0) |
+           ((mods & k_mod_ctrl) != 0 ? GLFW_MOD_CONTROL : 0) | ((mods & k_mod_alt) != 0 ? GLFW_MOD_ALT : 0);
+}
 
 /// The open window: its context, the view's texture, and one frame of its loop.
 struct WindowHost {
     GLFWwindow* window = nullptr;
-    Renderer& renderer;
+    Renderer renderer; ///< The 3-D view's, at the framebuffer's size (made again when it changes).
     EditorSession& session;
     EditorUi& ui;
     std::unique_ptr<ViewTexture> view = std::make_unique<ViewTexture>();
@@ -115,11 +148,44 @@ struct WindowHost {
         return {x * std::max(ww, 1) / ui.width(), y * std::max(wh, 1) / ui.height()};
     }
 
+    /// Follows the window: the UI laid out for its size in screen units and scaled for its content
+    /// scale, the 3-D view rendered at its framebuffer's size (its pixels: sharp on HiDPI). False while
+    /// it is minimised (nothing to draw).
+    bool follow_window_size()
+    {
+        int ww = 0, wh = 0, fw = 0, fh = 0;
+        glfwGetWindowSize(window, &ww, &wh);
+        glfwGetFramebufferSize(window, &fw, &fh);
+        if (ww <= 0 || wh <= 0 || fw <= 0 || fh <= 0)
+            return false;
+        if (ww != ui.width() || wh != ui.height())
+            ui.resize(ww, wh);
+        float xs = 1.0f, ys = 1.0f;
+        glfwGetWindowContentScale(window, &xs, &ys);
+        if (const float s = hidpi_ui_scale(xs, ww, fw); s != ui.scale())
+            ui.set_scale(s);
+        if (fw != image_width() || fh != image_height()) {
+            RenderDef def = renderer.settings();
+            def.width = std::clamp(fw, 16, 8192);
+            def.height = std::clamp(fh, 16, 8192);
+            if (Result<Renderer> resized = Renderer::create(def))
+                renderer = std::move(*resized);
+            else
+                ui.report(resized.error());
+            glfwMakeContextCurrent(window); // the new renderer made its own context current
+        }
+        return true;
+    }
+
     /// One frame: events, the 3-D view rendered offscreen and uploaded, the UI over it, the mouse's
     /// action in the view; `capture` gets the window's framebuffer before it is shown.
     void frame(double seconds, Image* capture = nullptr)
     {
         glfwPollEvents();
+        if (!follow_window_size()) {
+            glfwWaitEventsTimeout(0.1); // minimised: wait for it to come back
+            return;
+        }
         if (session.has_world()) {
             apply_scene_looks(renderer, session.scene(), session.world());
             // Only a failure is reported: a success would clear the error of a widget's action.
@@ -174,20 +240,28 @@ void on_cursor(GLFWwindow* window, double x, double y)
     h.ui.on_cursor(ux, uy);
 }
 
-void on_button(GLFWwindow* window, int button, int action, int /*mods*/)
+void on_button(GLFWwindow* window, int button, int action, int mods)
 {
-    if (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT)
-        host_of(window).ui.on_button(
-            button == GLFW_MOUSE_BUTTON_LEFT ? MouseButton::Left : MouseButton::Right, action == GLFW_PRESS);
+    for (const auto& [glfw, b] : k_glfw_buttons)
+        if (glfw == button)
+            host_of(window).ui.on_button(b, action == GLFW_PRESS, editor_mods(mods));
 }
 
-void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/)
+void on_scroll(GLFWwindow* window, double /*x*/, double y)
 {
-    if (action == GLFW_REPEAT)
-        return;
-    for (const auto& [glfw, k] : k_glfw_keys)
-        if (glfw == key)
-            host_of(window).ui.on_key(k, action == GLFW_PRESS);
+    host_of(window).ui.on_scroll(y);
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
+{
+    for (const auto& [glfw, k] : k_glfw_keys) {
+        // A held camera key repeats; a toggle (Tab, Space, H) does not flicker.
+        const bool repeats = k == EditorKey::Left || k == EditorKey::Right || k == EditorKey::Up ||
+                             k == EditorKey::Down || k == EditorKey::Plus || k == EditorKey::Minus ||
+                             k == EditorKey::W || k == EditorKey::A || k == EditorKey::S || k == EditorKey::D;
+        if (glfw == key && (action != GLFW_REPEAT || repeats))
+            host_of(window).ui.on_key(k, action != GLFW_RELEASE, editor_mods(mods));
+    }
 }
 
 /// A script's events, sent through the window's callback chain as GLFW would send them.
@@ -199,17 +273,33 @@ InputEvents window_events(WindowHost& h)
         ImGui_ImplGlfw_CursorEnterCallback(h.window, GLFW_TRUE); // the pointer is inside the window
         on_cursor(h.window, wx, wy);
     };
-    e.button = [&h](MouseButton b, bool down) {
-        ImGui_ImplGlfw_MouseButtonCallback(
-            h.window, b == MouseButton::Left ? GLFW_MOUSE_BUTTON_LEFT : GLFW_MOUSE_BUTTON_RIGHT,
-            down ? GLFW_PRESS : GLFW_RELEASE, 0);
+    e.button = [&h](MouseButton b, bool down, uint8_t mods) {
+        for (const auto& [glfw, button] : k_glfw_buttons)
+            if (button == b)
+                ImGui_ImplGlfw_MouseButtonCallback(h.window, glfw, down ? GLFW_PRESS : GLFW_RELEASE,
+                                                   glfw_mods(mods));
     };
-    e.key = [&h](EditorKey k, bool down) {
+    e.scroll = [&h](double notches) { ImGui_ImplGlfw_ScrollCallback(h.window, 0.0, notches); };
+    e.key = [&h](EditorKey k, bool down, uint8_t mods) {
         for (const auto& [glfw, key] : k_glfw_keys)
-            if (key == k)
-                ImGui_ImplGlfw_KeyCallback(h.window, glfw, 0, down ? GLFW_PRESS : GLFW_RELEASE, 0);
+            if (key == k) {
+                ImGui_ImplGlfw_KeyCallback(h.window, glfw, 0, down ? GLFW_PRESS : GLFW_RELEASE,
+                                           glfw_mods(mods));
+                return; // the first GLFW key of the editor's (Plus: '=' rather than the keypad's)
+            }
     };
     e.frame = [&h](double seconds) { h.frame(seconds); };
+    e.resize = [&h](int width, int height) {
+        glfwSetWindowSize(h.window, width, height);
+        // The window system answers asynchronously: wait (at most 2 s) until it has the new size.
+        for (int i = 0; i < 40; ++i) {
+            int ww = 0, wh = 0;
+            glfwGetWindowSize(h.window, &ww, &wh);
+            if (ww == width && wh == height)
+                break;
+            glfwWaitEventsTimeout(0.05);
+        }
+    };
     return e;
 }
 
@@ -228,6 +318,8 @@ GLFWwindow* open_window(EditorUi& ui, WindowUnavailable& why)
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API); // libGLESv2 dispatches EGL contexts
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE); // a 1280x720 window as large on a 200% screen
     GLFWwindow* window = glfwCreateWindow(ui.width(), ui.height(), "supermodal-editor", nullptr, nullptr);
     if (window == nullptr) {
         glfwTerminate();
@@ -267,15 +359,16 @@ int window_session(WindowHost& h, const WindowRun& run)
 }
 
 // ImGui's GLFW and GL back ends, the editor's callbacks and the script's events live as long as this.
-int window_loop(GLFWwindow* window, Renderer& renderer, EditorSession& session, EditorUi& ui,
+int window_loop(GLFWwindow* window, Renderer renderer, EditorSession& session, EditorUi& ui,
                 const WindowRun& run)
 {
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
-    WindowHost host{window, renderer, session, ui, std::make_unique<ViewTexture>(), Image{}};
+    WindowHost host{window, std::move(renderer), session, ui, std::make_unique<ViewTexture>(), Image{}};
     glfwSetWindowUserPointer(window, &host);
     glfwSetCursorPosCallback(window, on_cursor);
     glfwSetMouseButtonCallback(window, on_button);
+    glfwSetScrollCallback(window, on_scroll);
     glfwSetKeyCallback(window, on_key);
     ImGui::SetCurrentContext(ui.context());
     ImGui_ImplGlfw_InitForOpenGL(window, true); // chains to the callbacks above
@@ -321,7 +414,7 @@ int run_window(EditorSession& session, EditorUi& ui, const WindowRun& run, Windo
         why.message = renderer.error().message();
         return 2;
     }
-    const int status = window_loop(window, *renderer, session, ui, run);
+    const int status = window_loop(window, std::move(*renderer), session, ui, run);
     glfwDestroyWindow(window);
     glfwTerminate();
     return status;

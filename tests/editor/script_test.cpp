@@ -185,3 +185,47 @@ TEST(EditorScript, WithoutADisplayTheWindowFallsBackWithAMessage)
     EXPECT_NE(err.find("running the script headless"), std::string::npos) << err;
     EXPECT_TRUE(fs::exists(dir / "saved.json"));
 }
+
+TEST(EditorScript, EditsUndoneByScriptKeyAndButtonAndRedoneReplayToTheSameSavedScene)
+{
+    const std::string dir = ::testing::TempDir();
+    const auto saved = [&](const std::string& actions, const std::string& file) {
+        ed::EditorSession s;
+        ed::EditorUi ui(s, 1280, 720);
+        std::ostringstream log;
+        const ed::ScriptOutcome o = ed::run_script_text(
+            R"({"actions": [{"action": "load", "file": "samples/ball_on_board.json"},)" + actions +
+                R"(, {"action": "save", "file": ")" + dir + file + R"(", "state": "initial"}]})",
+            "test.json", SM_SOURCE_DIR, s, ui, log);
+        EXPECT_EQ(o.failure, ed::ScriptFailure::None) << o.error.message() << "\n" << log.str();
+        std::ifstream in(dir + file, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        return bytes.str();
+    };
+    const std::string edits = R"({"action": "set", "path": "/bodies/ball/shape/exponents/0", "value": 0.5},
+        {"action": "set", "path": "/bodies/board/material", "value": "steel"},
+        {"action": "set", "path": "/bodies/ball/position/1", "value": 0.4})";
+    const std::string original = saved(R"({"action": "step", "count": 1})", "script_undo_original.json");
+    const std::string edited = saved(edits, "script_undo_edited.json");
+    EXPECT_NE(edited, original);
+    // Undone three ways (Ctrl+Z, the History panel's Undo, the script's undo): the original, byte for
+    // byte; then redone three ways (Ctrl+Shift+Z, Ctrl+Y, redo): the edited scene, byte for byte.
+    const std::string undo = R"(, {"action": "key", "key": "z", "mods": ["ctrl"]},
+        {"action": "press", "widget": "Undo"}, {"action": "undo"})";
+    EXPECT_EQ(saved(edits + undo, "script_undo_undone.json"), original);
+    EXPECT_EQ(saved(edits + undo + R"(, {"action": "key", "key": "z", "mods": ["ctrl", "shift"]},
+        {"action": "key", "key": "y", "mods": ["ctrl"]}, {"action": "redo"})",
+                    "script_undo_redone.json"),
+              edited);
+    // Z without Ctrl does nothing; undo with nothing to undo is a bad script (status 2).
+    EXPECT_EQ(saved(edits + R"(, {"action": "key", "key": "z"})", "script_undo_plain_z.json"), edited);
+    ed::EditorSession s;
+    ed::EditorUi ui(s, 1280, 720);
+    std::ostringstream log;
+    const ed::ScriptOutcome o = ed::run_script_text(
+        R"({"actions": [{"action": "load", "file": "samples/ball_on_board.json"}, {"action": "undo"}]})",
+        "test.json", SM_SOURCE_DIR, s, ui, log);
+    EXPECT_EQ(o.failure, ed::ScriptFailure::BadScript);
+    EXPECT_NE(o.error.message().find("/actions/1: nothing to undo"), std::string::npos) << o.error.message();
+}

@@ -4,7 +4,9 @@
 #include "supermodal/modal.h"
 
 #include <cmath>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <sstream>
 
 namespace sm = supermodal;
 namespace ed = supermodal::editor;
@@ -179,4 +181,63 @@ TEST(EditorSession, SaveWritesTheCurrentStateAtomically)
     back = sm::load_scene(path);
     ASSERT_TRUE(back);
     EXPECT_EQ(back->bodies[torso].def.position.y, s.scene().bodies[torso].def.position.y);
+}
+
+namespace
+{
+
+std::string file_bytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+TEST(EditorUndo, UndoingEveryEditSavesTheOriginalSceneByteForByteAndRedoingSavesTheEditedOne)
+{
+    ed::EditorSession s;
+    ASSERT_TRUE(s.load(std::string(SM_SOURCE_DIR) + "/samples/ball_on_board.json"));
+    const std::string dir = ::testing::TempDir();
+    ASSERT_TRUE(s.save(dir + "undo_original.json", false));
+    const auto ball_mass = [](const ed::EditorSession& e) {
+        return sm::body_mass_properties(e.world(), sm::find_body(e.world(), "ball")).mass;
+    };
+    const double steel_mass = ball_mass(s);
+    s.step(50); // edits while the world has moved on
+    // A shape (applied live), a material and a transform (rebuilds), a setting; one refused value.
+    ASSERT_TRUE(s.set("/bodies/ball/shape/radii/0", 0.03));
+    EXPECT_EQ(s.last_set_effect(), ed::SetEffect::Live);
+    ASSERT_TRUE(s.set("/bodies/ball/material", "wood"));
+    ASSERT_TRUE(s.set("/bodies/support_left/position", ed::Json::array({-0.35, 0.05, 0.0})));
+    ASSERT_TRUE(s.set("/settings/dt", 0.00025));
+    EXPECT_FALSE(s.set("/bodies/ball/shape/radii/0", -1.0));
+    ASSERT_EQ(s.history().size(), 4u);         // the refused value left no edit
+    EXPECT_LT(ball_mass(s), 0.5 * steel_mass); // wood
+    ASSERT_TRUE(s.save(dir + "undo_edited.json", false));
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(s.undo()) << i;
+    EXPECT_EQ(s.history_position(), 0u);
+    ASSERT_TRUE(s.save(dir + "undo_undone.json", false));
+    EXPECT_EQ(file_bytes(dir + "undo_undone.json"), file_bytes(dir + "undo_original.json"));
+    const sm::Status nothing = s.undo();
+    ASSERT_FALSE(nothing);
+    EXPECT_NE(nothing.error().message().find("nothing to undo"), std::string::npos);
+    // The world follows: the ball has its steel mass and old radius again.
+    EXPECT_EQ(ball_mass(s), steel_mass);
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(s.redo()) << i;
+    EXPECT_FALSE(s.redo());
+    ASSERT_TRUE(s.save(dir + "undo_redone.json", false));
+    EXPECT_EQ(file_bytes(dir + "undo_redone.json"), file_bytes(dir + "undo_edited.json"));
+    // A new edit after an undo drops the undone ones; a load forgets them all.
+    ASSERT_TRUE(s.undo());
+    ASSERT_TRUE(s.set("/settings/substeps", 2));
+    EXPECT_EQ(s.history().size(), 4u);
+    EXPECT_EQ(s.history().back().path, "/settings/substeps");
+    EXPECT_FALSE(s.redo());
+    ASSERT_TRUE(s.load(std::string(SM_SOURCE_DIR) + "/samples/ball_on_board.json"));
+    EXPECT_TRUE(s.history().empty());
 }
