@@ -27,13 +27,16 @@ struct LatticeCase {
     std::string name;
     ShapeDef shape;
     /// Converged frequencies [Hz] (ascending; E = 10 MPa, ν = 0.3, ρ = 1000 kg/m³) and the lattice and
-    /// cut-cell subdivisions that gave them (`default_lattice_table --reference NAME` prints both).
+    /// cut-cell subdivisions that gave them (`default_lattice_table --reference NAME SUB [START]` prints
+    /// them; `--check` recomputes them).
     std::array<double, k_compared_modes> reference_hz{};
     std::array<int, 3> reference_cells{};
     int reference_subdivisions = 0;
     /// How far the reference's frequencies still moved from the lattice before it [-]: at most
     /// k_converged_change, unless the next refinement would pass k_max_lattice_dofs.
     double reference_change = 1.0;
+    /// Where the refinement started: the default lattice, or these cells when given.
+    std::array<int, 3> reference_start{};
 };
 
 /// Every family, in table order.

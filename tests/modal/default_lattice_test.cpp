@@ -52,12 +52,12 @@ void expect_torsion_within_tolerance(const std::string& name)
 
 } // namespace
 
-TEST(DefaultLattice, ThinDirectionsGetAtLeastTwoCells)
+TEST(DefaultLattice, ThinDirectionsGetAtLeastThreeCells)
 {
-    // The 2x4 board: 16 along its length, 2 through thickness and width (1 each before: +6% in torsion).
-    EXPECT_EQ(sm::modal::resolve_cells({}, 2, {1.0, 0.038, 0.089}), (std::array<int, 3>{16, 2, 2}));
-    // 1:50: still 2 through the thickness.
-    EXPECT_EQ(sm::modal::resolve_cells({}, 2, {1.0, 0.02, 0.1}), (std::array<int, 3>{16, 2, 2}));
+    // The 2x4 board: 16 along its length, 3 through thickness and width (1 each gave +6% in torsion).
+    EXPECT_EQ(sm::modal::resolve_cells({}, 2, {1.0, 0.038, 0.089}), (std::array<int, 3>{16, 3, 3}));
+    // 1:50: still 3 through the thickness.
+    EXPECT_EQ(sm::modal::resolve_cells({}, 2, {1.0, 0.02, 0.1}), (std::array<int, 3>{16, 3, 3}));
     // Compact: the dof cap takes a cube down to 5³.
     EXPECT_EQ(sm::modal::resolve_cells({}, 2, {1, 1, 1}), (std::array<int, 3>{5, 5, 5}));
     EXPECT_LE(sm::modal::lattice_dof_bound({5, 5, 5}, 2), sm::modal::k_default_max_dofs);
@@ -77,6 +77,16 @@ TEST(DefaultLattice, Board1To10IncludingTorsion)
 TEST(DefaultLattice, Board1To50IncludingTorsion)
 {
     expect_torsion_within_tolerance("board_1_50");
+}
+
+TEST(DefaultLattice, RoundedSlat1To30)
+{
+    expect_default_within_tolerance("slat_1_30");
+}
+
+TEST(DefaultLattice, Needle1To50)
+{
+    expect_default_within_tolerance("needle_1_50");
 }
 
 TEST(DefaultLattice, Cube)
@@ -130,7 +140,8 @@ TEST(DefaultLattice, TooLargeALatticeIsRefusedBeforeItIsBuilt)
     // the build, which refuses after choosing the third and before any quadrature.
     def.lattice.cells = {128, 100, 0};
     ASSERT_FALSE(sm::validate(def)) << "128 × 100 × 1 is already over the cap";
-    def.lattice.cells = {100, 60, 0};
+    // 60 × 40 × 1 is 51909 dofs; the third axis gets at least 3 cells: 111321, over the cap.
+    def.lattice.cells = {60, 40, 0};
     ASSERT_TRUE(sm::validate(def));
     const sm::Result<sm::ModalBasis> b = sm::build_modal_basis(def);
     ASSERT_FALSE(b);

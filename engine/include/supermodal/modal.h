@@ -46,7 +46,7 @@ inline constexpr int k_max_lattice_dofs = 100000;
 /// The hexahedral lattice over the shape's bounding box.
 struct LatticeDef {
     std::array<int, 3> cells{};    ///< Cells along x, y, z; 0 = the default lattice (docs/modal.md,
-                                   ///< "Default lattice": 16 along the longest side, at least 2 through
+                                   ///< "Default lattice": 16 along the longest side, at least 3 through
                                    ///< the others, at most 3000 dofs; 16 / 2 / 512 cells for order 1).
     int element_order = 2;         ///< 1: 8-node trilinear (locks in bending); 2: 20-node serendipity.
     int cut_cell_subdivisions = 4; ///< Sub-cells per axis for the quadrature of cells the surface cuts

@@ -410,8 +410,9 @@ Result<LatticeModel> assemble_lattice_model(const ModalBasisDef& def)
                          " degrees of freedom, more than " + std::to_string(k_max_lattice_dofs)};
     if (def.mode_count != k_all_modes && def.mode_count > dof_bound - 6)
         return Error{"", "/mode_count",
-                     "the lattice has at most " + std::to_string(dof_bound - 6) + " elastic modes (asked for " +
-                         std::to_string(def.mode_count) + "): refine it or ask for fewer modes"};
+                     "the lattice has at most " + std::to_string(dof_bound - 6) +
+                         " elastic modes (asked for " + std::to_string(def.mode_count) +
+                         "): refine it or ask for fewer modes"};
     lat.min = bounds->min;
     for (int d = 0; d < 3; ++d)
         lat.cell_size[d] = (bounds->max[d] - bounds->min[d]) / lat.cells[d];

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "modal/auto_lattice.h"
+
 #include "modal/lattice.h"
 
 #include <algorithm>
@@ -50,7 +51,7 @@ Result<LatticeChoice> choose_lattice(ModalBasisCache& cache, const ModalBasisDef
     // The default halved: a coarser lattice that may fail to hold the modes (too few dofs) or the body.
     std::array<int, 3> half{};
     for (int d = 0; d < 3; ++d)
-        half[d] = std::max(order == 1 ? 2 : 1, base[d] / 2);
+        half[d] = std::max(order == 1 ? 2 : 1, (base[d] + 1) / 2); // rounded up: 3 cells halve to 2
     if (half != base)
         if (Result<std::shared_ptr<const ModalBasis>> coarse = cache.get_or_build(with_cells(def, half));
             coarse)

@@ -100,9 +100,10 @@ std::array<int, 3> resolve_cells(const std::array<int, 3>& requested, int order,
 {
     // 20-node cells: k_default_long_cells along the longest side, the others in proportion but at least
     // k_default_thin_cells (one quadratic cell through a thin board cannot follow the warping of its
-    // section in torsion), coarser everywhere while the lattice would pass k_default_max_dofs (a compact
-    // body needs fewer cells than a slender one for the same accuracy). 8-node cells lock in bending;
-    // their default stays 16 along the longest side, at least 2, at most 512 cells.
+    // section in torsion; two leave a rounded section's bending 2% stiff), coarser everywhere while the
+    // lattice would pass k_default_max_dofs (a compact body needs fewer cells than a slender one for the same
+    // accuracy). 8-node cells lock in bending; their default stays 16 along the longest side, at least 2, at
+    // most 512 cells.
     const bool serendipity = order != 1;
     const int n_min = serendipity ? k_default_thin_cells : 2;
     const double longest = std::max({extent.x, extent.y, extent.z});

@@ -313,7 +313,8 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
                        modal.lattice[i]);
         // Refused here, before any world would start building it (scene lattices are 20-node).
         if (r.ok() && modal::lattice_dof_bound(modal.lattice, 2) > k_max_lattice_dofs)
-            return r.fail(lattice_where, "expected a lattice of at most " + std::to_string(k_max_lattice_dofs) +
+            return r.fail(lattice_where, "expected a lattice of at most " +
+                                             std::to_string(k_max_lattice_dofs) +
                                              " degrees of freedom, found " +
                                              std::to_string(modal::lattice_dof_bound(modal.lattice, 2)));
     }
