@@ -233,6 +233,7 @@ int main(int argc, char** argv)
         std::printf(
             "| family | default lattice | dofs | build CPU [s] | build wall [s] | max error, 6 modes | "
             "reference lattice | peak memory [MB] |\n|---|---|---|---|---|---|---|---|\n");
+    std::fflush(stdout); // before fork(): the children would print it again
     for (const test::LatticeCase* c : chosen)
         ok = (check ? check_case(*c) : row_in_child(*c)) && ok;
     return ok ? 0 : 1;

@@ -40,7 +40,7 @@ inline constexpr int k_max_full_dofs = 1536;
 inline constexpr int k_max_lattice_cells = 128;
 /// Most degrees of freedom a lattice may have, counted over its whole box (3 × (corners + edge
 /// midpoints) for 20-node cells), so a request is refused before anything is built: the largest
-/// lattices within it take about a minute and a gigabyte to build on one core (docs/modal.md).
+/// lattices within it took 44–107 s and 1.2 GB to build on one core (docs/modal.md).
 inline constexpr int k_max_lattice_dofs = 100000;
 
 /// The hexahedral lattice over the shape's bounding box.
