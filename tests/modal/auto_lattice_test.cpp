@@ -113,7 +113,8 @@ TEST(AutoLattice, TheRunReportsTheChosenLatticeAndAnExplicitOneIsKept)
     };
     const sm::BodyModalActivity chosen = activity("");
     EXPECT_GT(chosen.lattice_cells[0], 8);
-    EXPECT_FALSE(chosen.lattice_converged); // 16×3×3 moved more than 2% from 8×2×2; stopped by the cap
+    // 16×3×3 moved more than 2% from 8×2×2; stopped by the cap.
+    EXPECT_FALSE(chosen.lattice_converged);
     EXPECT_GE(chosen.lattice_frequency_change, 0.0);
     EXPECT_GT(chosen.most_active_modes, 0); // the landing bends it
     EXPECT_GT(chosen.lattice_error_estimate, 0.0);
