@@ -98,13 +98,13 @@ TEST(ModalLattice, DerivativesMatchFiniteDifferences)
 
 TEST(ModalLattice, DefaultResolutionFollowsAspectRatio)
 {
-    // Slender board: 8 along the length, 1 through thickness and width.
-    EXPECT_EQ(modal::resolve_cells({}, 2, {1.0, 0.038, 0.089}), (std::array<int, 3>{8, 1, 1}));
-    // Compact sphere: the 64-cell budget gives 4³.
-    EXPECT_EQ(modal::resolve_cells({}, 2, {1, 1, 1}), (std::array<int, 3>{4, 4, 4}));
+    // Slender board: 16 along the length, at least 3 through thickness and width.
+    EXPECT_EQ(modal::resolve_cells({}, 2, {1.0, 0.038, 0.089}), (std::array<int, 3>{16, 3, 3}));
+    // Compact sphere: the 3000-dof cap gives 5³.
+    EXPECT_EQ(modal::resolve_cells({}, 2, {1, 1, 1}), (std::array<int, 3>{5, 5, 5}));
     EXPECT_EQ(modal::resolve_cells({}, 1, {1, 1, 1}), (std::array<int, 3>{8, 8, 8}));
     // Requested counts are kept; only zeros are chosen.
-    EXPECT_EQ(modal::resolve_cells({3, 0, 5}, 2, {1.0, 0.5, 1.0}), (std::array<int, 3>{3, 4, 5}));
+    EXPECT_EQ(modal::resolve_cells({3, 0, 5}, 2, {1.0, 0.5, 1.0}), (std::array<int, 3>{3, 8, 5}));
 }
 
 TEST(ModalLattice, NumberingAndLocate)

@@ -38,11 +38,16 @@ inline constexpr int k_all_modes = 0;
 inline constexpr int k_max_full_dofs = 1536;
 /// Largest cell count per lattice axis.
 inline constexpr int k_max_lattice_cells = 128;
+/// Most degrees of freedom a lattice may have, counted over its whole box (3 × (corners + edge
+/// midpoints) for 20-node cells), so a request is refused before anything is built: the largest
+/// lattices within it took 44–107 s and 1.2 GB to build on one core (docs/modal.md).
+inline constexpr int k_max_lattice_dofs = 100000;
 
 /// The hexahedral lattice over the shape's bounding box.
 struct LatticeDef {
-    std::array<int, 3> cells{};    ///< Cells along x, y, z; 0 = choose from the aspect ratio (about
-                                   ///< 8 along the longest side, at most 64 in all; 16 / 512 for order 1).
+    std::array<int, 3> cells{};    ///< Cells along x, y, z; 0 = the default lattice (docs/modal.md,
+                                   ///< "Default lattice": 16 along the longest side, at least 3 through
+                                   ///< the others, at most 3000 dofs; 16 / 2 / 512 cells for order 1).
     int element_order = 2;         ///< 1: 8-node trilinear (locks in bending); 2: 20-node serendipity.
     int cut_cell_subdivisions = 4; ///< Sub-cells per axis for the quadrature of cells the surface cuts
                                    ///< (2×2×2 Gauss points each); higher = truer boundary, slower build.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <string>
 
 namespace supermodal::modal
 {
@@ -401,6 +402,17 @@ Result<LatticeModel> assemble_lattice_model(const ModalBasisDef& def)
     Lattice& lat = model.lattice;
     lat.order = def.lattice.element_order;
     lat.cells = resolve_cells(def.lattice.cells, lat.order, bounds->max - bounds->min);
+    // Refused before any quadrature: axes chosen beside large given ones can pass the cap together.
+    const int dof_bound = lattice_dof_bound(lat.cells, lat.order);
+    if (dof_bound > k_max_lattice_dofs)
+        return Error{"", "/lattice/cells",
+                     "the lattice would have up to " + std::to_string(dof_bound) +
+                         " degrees of freedom, more than " + std::to_string(k_max_lattice_dofs)};
+    if (def.mode_count != k_all_modes && def.mode_count > dof_bound - 6)
+        return Error{"", "/mode_count",
+                     "the lattice has at most " + std::to_string(dof_bound - 6) +
+                         " elastic modes (asked for " + std::to_string(def.mode_count) +
+                         "): refine it or ask for fewer modes"};
     lat.min = bounds->min;
     for (int d = 0; d < 3; ++d)
         lat.cell_size[d] = (bounds->max[d] - bounds->min[d]) / lat.cells[d];

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "modal/auto_lattice.h"
 
+#include "modal/lattice.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,17 +15,6 @@ ModalBasisDef with_cells(ModalBasisDef def, const std::array<int, 3>& cells)
 {
     def.lattice.cells = cells;
     return def;
-}
-
-// Degrees of freedom of a lattice over a full box, an upper bound (cells the body does not reach carry
-// none), so the cap is checked before building: corners, plus edge midpoints for 20-node cells.
-int dof_bound(const std::array<int, 3>& cells, int order)
-{
-    const long nx = cells[0], ny = cells[1], nz = cells[2];
-    long nodes = (nx + 1) * (ny + 1) * (nz + 1);
-    if (order == 2)
-        nodes += nx * (ny + 1) * (nz + 1) + (nx + 1) * ny * (nz + 1) + (nx + 1) * (ny + 1) * nz;
-    return static_cast<int>(std::min<long>(3 * nodes, 1L << 30));
 }
 
 void set_changes(LatticeChoice& choice, std::vector<double> changes)
@@ -60,7 +51,7 @@ Result<LatticeChoice> choose_lattice(ModalBasisCache& cache, const ModalBasisDef
     // The default halved: a coarser lattice that may fail to hold the modes (too few dofs) or the body.
     std::array<int, 3> half{};
     for (int d = 0; d < 3; ++d)
-        half[d] = std::max(order == 1 ? 2 : 1, base[d] / 2);
+        half[d] = std::max(order == 1 ? 2 : 1, (base[d] + 1) / 2); // rounded up: 3 cells halve to 2
     if (half != base)
         if (Result<std::shared_ptr<const ModalBasis>> coarse = cache.get_or_build(with_cells(def, half));
             coarse)
@@ -71,7 +62,7 @@ Result<LatticeChoice> choose_lattice(ModalBasisCache& cache, const ModalBasisDef
         std::array<int, 3> finer{};
         for (int d = 0; d < 3; ++d)
             finer[d] = std::min(2 * cells[d], k_max_lattice_cells);
-        if (finer == cells || dof_bound(finer, order) > max_dofs)
+        if (finer == cells || lattice_dof_bound(finer, order) > max_dofs)
             break;
         Result<std::shared_ptr<const ModalBasis>> built = cache.get_or_build(with_cells(def, finer));
         if (!built)

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <string>
 
 namespace supermodal
 {
@@ -114,6 +115,13 @@ Status validate(const ModalBasisDef& def)
             return field_error("/lattice/cells", "expected cell counts in [0, 128] (0 = automatic)");
     if (def.lattice.element_order != 1 && def.lattice.element_order != 2)
         return field_error("/lattice/element_order", "expected 1 (8-node) or 2 (20-node)");
+    // Automatic axes get at least one cell: what is given must fit on its own.
+    const std::array<int, 3>& c = def.lattice.cells;
+    if (modal::lattice_dof_bound({std::max(c[0], 1), std::max(c[1], 1), std::max(c[2], 1)},
+                                 def.lattice.element_order) > k_max_lattice_dofs)
+        return Error{"", "/lattice/cells",
+                     "expected a lattice of at most " + std::to_string(k_max_lattice_dofs) +
+                         " degrees of freedom (3 per corner and edge-midpoint node over its box)"};
     if (def.lattice.cut_cell_subdivisions < 1 || def.lattice.cut_cell_subdivisions > 16)
         return field_error("/lattice/cut_cell_subdivisions", "expected an integer in [1, 16]");
     if (def.mode_count != k_all_modes && (def.mode_count < 1 || def.mode_count > k_max_modes))

@@ -87,21 +87,35 @@ void Lattice::cell_grid_nodes(int i, int j, int k, int32_t* out) const
     }
 }
 
+int lattice_dof_bound(const std::array<int, 3>& cells, int order)
+{
+    const long nx = cells[0], ny = cells[1], nz = cells[2];
+    long nodes = (nx + 1) * (ny + 1) * (nz + 1);
+    if (order == 2)
+        nodes += nx * (ny + 1) * (nz + 1) + (nx + 1) * ny * (nz + 1) + (nx + 1) * (ny + 1) * nz;
+    return static_cast<int>(std::min<long>(3 * nodes, 1L << 30));
+}
+
 std::array<int, 3> resolve_cells(const std::array<int, 3>& requested, int order, const Vec3& extent)
 {
-    // About 8 cells along the longest side (16 for order 1), the others in proportion, but at most 64
-    // cells in all (512): a compact body needs fewer cells than a slender one for the same accuracy,
-    // and the sparse factorisation grows quickly with a 3-D lattice.
-    const int n_min = order == 1 ? 2 : 1;
-    const int budget = order == 1 ? 512 : 64;
+    // 20-node cells: k_default_long_cells along the longest side, the others in proportion but at least
+    // k_default_thin_cells (one quadratic cell through a thin board cannot follow the warping of its
+    // section in torsion; two leave a rounded section's bending 2% stiff), coarser everywhere while the
+    // lattice would pass k_default_max_dofs (a compact body needs fewer cells than a slender one for the same
+    // accuracy). 8-node cells lock in bending; their default stays 16 along the longest side, at least 2, at
+    // most 512 cells.
+    const bool serendipity = order != 1;
+    const int n_min = serendipity ? k_default_thin_cells : 2;
     const double longest = std::max({extent.x, extent.y, extent.z});
     std::array<int, 3> cells{};
-    for (int n_long = order == 1 ? 16 : 8; n_long >= n_min; --n_long) {
+    for (int n_long = serendipity ? k_default_long_cells : 16; n_long >= n_min; --n_long) {
         for (int d = 0; d < 3; ++d) {
             const auto proportional = static_cast<int>(std::lround(n_long * extent[d] / longest));
             cells[d] = requested[d] > 0 ? requested[d] : std::max(n_min, proportional);
         }
-        if (cells[0] * cells[1] * cells[2] <= budget)
+        const bool fits = serendipity ? lattice_dof_bound(cells, order) <= k_default_max_dofs
+                                      : cells[0] * cells[1] * cells[2] <= 512;
+        if (fits)
             break;
     }
     return cells;

@@ -63,9 +63,22 @@ struct Lattice {
     }
 };
 
-/// Cells per axis chosen from the box's aspect ratio: about 8 cells (16 for order 1) along the longest
-/// side, the others in proportion, at least 1 (2 for order 1), fewer along every side when that would
-/// exceed 64 cells (512 for order 1): a sphere gets 4³ (8³). Requested counts > 0 are kept.
+/// Default lattice of 20-node cells (docs/modal.md, "Default lattice"): cells along the longest side
+/// of the shape's box [-], ...
+inline constexpr int k_default_long_cells = 16;
+/// ... at least this many through every other side, however thin [-], ...
+inline constexpr int k_default_thin_cells = 3;
+/// ... and fewer cells along every side while the lattice would have more degrees of freedom than this
+/// (lattice_dof_bound) [-].
+inline constexpr int k_default_max_dofs = 3000;
+
+/// Degrees of freedom of a lattice over its full box: corners, plus edge midpoints for 20-node cells.
+/// An upper bound (cells the body does not reach carry none), known before anything is built.
+[[nodiscard]] int lattice_dof_bound(const std::array<int, 3>& cells, int order);
+
+/// Cells per axis for the zeros of `requested` from the box's extent [m]: 20-node cells as the constants
+/// above say (a sphere gets 5³, the 2x4 board 16 × 3 × 3); 8-node cells 16 along the longest side, at
+/// least 2, at most 512 cells (a sphere 8³). Requested counts > 0 are kept.
 [[nodiscard]] std::array<int, 3> resolve_cells(const std::array<int, 3>& requested, int order,
                                                const Vec3& extent);
 

@@ -2,6 +2,7 @@
 #include "scene/body_reader.h"
 
 #include "geometry/hyperquadric_solve.h"
+#include "modal/lattice.h"
 #include "scene/did_you_mean.h"
 #include "supermodal/modal.h"
 #include "supermodal/shape.h"
@@ -310,6 +311,12 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
         for (size_t i = 0; i < 3; ++i)
             r.read_int((*lattice)[i], pointer_join(lattice_where, i), closed(1.0, k_max_lattice_cells),
                        modal.lattice[i]);
+        // Refused here, before any world would start building it (scene lattices are 20-node).
+        if (r.ok() && modal::lattice_dof_bound(modal.lattice, 2) > k_max_lattice_dofs)
+            return r.fail(lattice_where, "expected a lattice of at most " +
+                                             std::to_string(k_max_lattice_dofs) +
+                                             " degrees of freedom, found " +
+                                             std::to_string(modal::lattice_dof_bound(modal.lattice, 2)));
     }
     if (const Json* integrator = r.member(*dynamics, "integrator")) {
         size_t index = 0;
