@@ -19,7 +19,7 @@ Status EditorSession::load(const std::string& path)
 
 void EditorSession::share_bases(Scene& scene) const
 {
-    // An edited scene comes back from JSON without the cache; every world this session builds shares it.
+    // An edited scene comes back from JSON without the cache; every world the editor builds shares it.
     if (!scene.world.modal_basis_cache)
         scene.world.modal_basis_cache = m_basis_cache;
 }
