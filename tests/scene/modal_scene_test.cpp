@@ -119,7 +119,8 @@ TEST(SceneModal, ErrorsNameThePointer)
     // Each count in range, together over k_max_lattice_dofs: refused while reading, before a world
     // would start building it (128³ 20-node cells: 25 million dofs).
     EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "lattice": [128, 128, 128]})"),
-                         "/bodies/0/dynamics/lattice", "expected a lattice of at most 100000 degrees of freedom"));
+                         "/bodies/0/dynamics/lattice",
+                         "expected a lattice of at most 100000 degrees of freedom"));
     EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "integrator": "verlet"})"),
                          "/bodies/0/dynamics/integrator", "\"exact\""));
     EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "damping_ratio": -0.1})"),
