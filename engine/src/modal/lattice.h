@@ -74,7 +74,8 @@ inline constexpr int k_default_max_dofs = 3000;
 
 /// Degrees of freedom of a lattice over its full box: corners, plus edge midpoints for 20-node cells.
 /// An upper bound (cells the body does not reach carry none), known before anything is built.
-[[nodiscard]] int lattice_dof_bound(const std::array<int, 3>& cells, int order);
+/// Exported (SM_API): the scene reader in the assets library refuses oversized lattices with it.
+[[nodiscard]] SM_API int lattice_dof_bound(const std::array<int, 3>& cells, int order);
 
 /// Cells per axis for the zeros of `requested` from the box's extent [m]: 20-node cells as the constants
 /// above say (a sphere gets 5³, the 2x4 board 16 × 3 × 3); 8-node cells 16 along the longest side, at
