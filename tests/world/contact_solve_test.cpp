@@ -180,9 +180,56 @@ TEST(SoftContact, LightBoxOnHeavyBoxRestsAtGameStep)
     EXPECT_LT(sm::length(sm::body_linear_velocity(w, high)), 1e-3);
 }
 
+struct HeavyCase {
+    const char* name;
+    double mass_ratio;
+    double dt;
+};
+
+class SoftHeavyOnLight : public ::testing::TestWithParam<HeavyCase>
+{
+};
+
+TEST_P(SoftHeavyOnLight, HeavyBoxDroppedOnLightBoxStands)
+{
+    // A rounded box 1000 (10^6) times heavier dropped 5 cm onto a light one resting on the ground: it
+    // must stop on it and both stand. Unscaled, the passes moved the heavy box by the light one's
+    // effective mass and shot the light box out (measured: 2.2 m away after the 3 s). Bounds: each contact
+    // sinks by g/ω² under its load (the springs are tuned to it), 0.07 mm at the automatic 60 Hz
+    // between the boxes and 0.02 mm at the doubled 120 Hz on the ground; 0.5 mm leaves room for the
+    // landing's leftover overlap on the rounded faces (measured 0.08 mm between the boxes at 1/240 s,
+    // 0.14 mm at 1 ms). The landing may shift the heavy box sideways (measured 3.4 mm), not the light one.
+    const HeavyCase c = GetParam();
+    sm::World w(soft_def(c.dt, sm::ContactPath::SupportMap));
+    add_plane(w, {0, 1, 0});
+    const double half = 0.1, drop = 0.05, sink = 5e-4;
+    const sm::Entity low = add_body(w, {half, half, half}, 0.5, {0, half, 0}, {}, 0.5, 0.5);
+    run_steps(w, static_cast<int>(1.0 / c.dt));
+    const sm::Vec3 settled = sm::body_position(w, low);
+    const sm::Entity high = add_body(w, {half, half, half}, 0.5, {0, settled.y + 2.0 * half + drop, 0}, {},
+                                     0.5, 0.5, 1000.0 * c.mass_ratio);
+    run_steps(w, static_cast<int>(3.0 / c.dt));
+    const sm::Vec3 lo = sm::body_position(w, low), hi = sm::body_position(w, high);
+    EXPECT_NEAR(lo.y, settled.y, sink);
+    EXPECT_LT(std::hypot(lo.x - settled.x, lo.z - settled.z), 1e-3);
+    EXPECT_NEAR(hi.y - lo.y, 2.0 * half, sink);
+    EXPECT_LT(std::hypot(hi.x - lo.x, hi.z - lo.z), 0.01);
+    EXPECT_LT(sm::length(sm::body_linear_velocity(w, high)), 1e-3);
+    EXPECT_LT(sm::length(sm::body_linear_velocity(w, low)), 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(MassRatioAndStep, SoftHeavyOnLight,
+                         ::testing::Values(HeavyCase{"ratio_1e3_240hz", 1e3, 1.0 / 240.0},
+                                           HeavyCase{"ratio_1e3_1ms", 1e3, 1e-3},
+                                           HeavyCase{"ratio_1e6_240hz", 1e6, 1.0 / 240.0}),
+                         [](const ::testing::TestParamInfo<HeavyCase>& info) {
+                             return std::string(info.param.name);
+                         });
+
 TEST(SoftContact, SameHashOnOneAndTwoThreads)
 {
-    auto run = [](int threads, int solver_substeps) {
+    // `heavy`: every third body 1000 times denser, so heavy-on-light pairs take the scaled lower mass.
+    auto run = [](int threads, int solver_substeps, bool heavy) {
         sm::WorldDef def = soft_def(1.0 / 240.0);
         def.thread_count = threads;
         def.contact.soft.substeps = solver_substeps;
@@ -190,12 +237,15 @@ TEST(SoftContact, SameHashOnOneAndTwoThreads)
         add_plane(w, {0, 1, 0});
         for (int i = 0; i < 60; ++i)
             add_body(w, {0.05, 0.04, 0.03}, i % 2 == 0 ? 1.0 : 0.3,
-                     {0.09 * (i % 5), 0.1 + 0.09 * (i / 5), 0.09 * ((i / 5) % 3)});
+                     {0.09 * (i % 5), 0.1 + 0.09 * (i / 5), 0.09 * ((i / 5) % 3)}, {}, 0.5, 0.0,
+                     heavy && i % 3 == 0 ? 1e6 : 1000.0);
         run_steps(w, 240);
         return w.state_hash();
     };
-    for (const int solver_substeps : {1, 3})
-        EXPECT_EQ(run(1, solver_substeps), run(2, solver_substeps)) << solver_substeps << " solver substeps";
+    for (const bool heavy : {false, true})
+        for (const int solver_substeps : {1, 3})
+            EXPECT_EQ(run(1, solver_substeps, heavy), run(2, solver_substeps, heavy))
+                << solver_substeps << " solver substeps, heavy " << heavy;
 }
 
 class SoftModalBounce : public ::testing::TestWithParam<int>

@@ -95,6 +95,18 @@ SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint
     return make_soft(omega * std::sqrt(scale), zeta, h);
 }
 
+// A pair's upper body at least this much heavier than its lower one (their masses along the normal at
+// its first point) has the lower one's mass scaled up in its rows (scale_heavy_on_light).
+constexpr double k_heavy_mass_ratio = 4.0;
+// ... and resting on it: the normal (from the lower body to the upper one) at most 60° from up.
+constexpr double k_heavy_min_uprightness = 0.5;
+
+// A side's own mass along d at its anchor [kg] (the other side held still).
+double side_mass_along(const Side& s, const Vec3& d)
+{
+    return inverse_along(point_mass_inverse(s, Side{}), d);
+}
+
 // Up to k_max_rows_per_pair of the points: the deepest, then each next the one that widens the patch
 // most in the contact plane (farthest from the first, then from their line, then from their triangle).
 size_t pick_rows(std::span<const ContactPoint> points, bool flat_faces,
@@ -154,7 +166,6 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
     p.normal_mass = inverse_along(k, p.normal);
     p.tangent_mass[0] = inverse_along(k, p.tangent[0]);
     p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
-    p.approach = dot(relative_velocity(p), p.normal);
     return p;
 }
 
@@ -170,9 +181,8 @@ void remake_sides(Registry& reg, const BodyPair& pair, SoftPoint& p, double h)
     p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
 }
 
-// The pair's rows and warm start: its last normal load shared by the points' weights, its friction
-// and rolling loads likewise, turned into today's contact plane.
-void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
+// The pair's rows, not yet warm started: its settings, its points' sides and masses.
+void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
 {
     const BodyPair& pair = cw.pairs[sp.pair];
     const BodyModel& ma = reg.get<BodyModel>(pair.a);
@@ -182,15 +192,32 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
     sp.friction = std::sqrt(ma.friction * mb.friction);
     sp.restitution = std::max(ma.restitution, mb.restitution);
     sp.rolling = std::max(ma.rolling_resistance, mb.rolling_resistance);
-    const double omega = pair_omega(def.soft, h, ma.inv_mass == 0.0 || mb.inv_mass == 0.0);
     sp.node_a = sp.node_b = k_no_node;
-    const PairAnchor* old = find_pair_anchor(cw.anchors, pair.key());
     std::array<uint32_t, k_max_rows_per_pair> picked{};
     sp.count = static_cast<uint32_t>(pick_rows(points, has_flat_faces(ma) || has_flat_faces(mb), picked));
+    for (size_t i = 0; i < sp.count; ++i)
+        rows.points[sp.first + i] = make_point(reg, pair, points[picked[i]], h);
+    if (sp.count > 0) {
+        const SoftPoint& first = rows.points[sp.first];
+        sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
+        sp.node_b = takes_impulse(first.b) ? pair.b.index : k_no_node;
+    }
+}
+
+// The pair's springs and warm start: its last normal load shared by the points' weights, its friction
+// and rolling loads likewise, turned into today's contact plane.
+void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
+{
+    const BodyPair& pair = cw.pairs[sp.pair];
+    const BodyModel& ma = reg.get<BodyModel>(pair.a);
+    const BodyModel& mb = reg.get<BodyModel>(pair.b);
+    SoftContacts& rows = cw.soft;
+    const double omega = pair_omega(def.soft, h, ma.inv_mass == 0.0 || mb.inv_mass == 0.0);
+    const PairAnchor* old = find_pair_anchor(cw.anchors, pair.key());
     const double w = 1.0 / sp.count; // the rows share the pair's last loads alike
     for (size_t i = 0; i < sp.count; ++i) {
         SoftPoint& p = rows.points[sp.first + i];
-        p = make_point(reg, pair, points[picked[i]], h);
+        p.approach = dot(relative_velocity(p), p.normal); // after the warm starts of the pairs before
         if (old != nullptr)
             p.normal_impulse = w * h * old->normal_load;
         p.soft = point_soft(omega, def.soft.damping_ratio, h, p, rows.gravity);
@@ -200,16 +227,11 @@ void prepare_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPa
         p.tangent_impulse[1] = w * h * dot(old->friction_load, p.tangent[1]);
         apply_accumulated(p);
     }
-    if (sp.count > 0) {
-        const SoftPoint& first = rows.points[sp.first];
-        sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
-        sp.node_b = takes_impulse(first.b) ? pair.b.index : k_no_node;
-    }
     if (old != nullptr && sp.count > 0) {
         const Vec3 n = rows.points[sp.first].normal;
         sp.stick = old->spring - dot(old->spring, n) * n; // turned into today's contact plane
     }
-    if (sp.rolling <= 0.0 || points.empty())
+    if (sp.rolling <= 0.0 || sp.count == 0)
         return;
     SoftPoint& first = rows.points[sp.first];
     Mat3 mass;
@@ -334,6 +356,105 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
             .point_count = static_cast<int>(sp.count)};
 }
 
+// Levels of the contact graph [-]: 1 for a body touching something that takes no impulse (the ground,
+// a kinematic body), n + 1 for one touching a level-n body; 0 where not grounded. Breadth
+// first in pair order, so the result does not depend on threads.
+std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes)
+{
+    auto id = [&](uint32_t node) {
+        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+    };
+    std::vector<uint32_t> start(nodes.size() + 1, 0), edges, level(nodes.size(), 0), queue;
+    for (const SoftPair& sp : rows.pairs)
+        if (sp.count > 0 && sp.node_a != k_no_node && sp.node_b != k_no_node) {
+            ++start[id(sp.node_a) + 1];
+            ++start[id(sp.node_b) + 1];
+        }
+    for (size_t i = 0; i < nodes.size(); ++i)
+        start[i + 1] += start[i];
+    edges.resize(start.back());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (const SoftPair& sp : rows.pairs) {
+        if (sp.count == 0)
+            continue;
+        const bool a = sp.node_a != k_no_node, b = sp.node_b != k_no_node;
+        if (a && b) {
+            edges[fill[id(sp.node_a)]++] = static_cast<uint32_t>(id(sp.node_b));
+            edges[fill[id(sp.node_b)]++] = static_cast<uint32_t>(id(sp.node_a));
+        } else if (a != b) {
+            const size_t i = id(a ? sp.node_a : sp.node_b);
+            if (level[i] == 0) {
+                level[i] = 1;
+                queue.push_back(static_cast<uint32_t>(i));
+            }
+        }
+    }
+    for (size_t q = 0; q < queue.size(); ++q)
+        for (uint32_t e = start[queue[q]]; e < start[queue[q] + 1]; ++e)
+            if (level[edges[e]] == 0) {
+                level[edges[e]] = level[queue[q]] + 1;
+                queue.push_back(edges[e]);
+            }
+    return level;
+}
+
+// Heavy on light: a pair whose upper body (the one farther from the ground in the contact graph, and
+// above the other along the normal) is at least k_heavy_mass_ratio times heavier than its lower one along
+// the normal has the lower body's
+// inverse mass and inertia in its rows scaled down to look as heavy as the upper one. Gauss–Seidel moves
+// a heavy body on a light one by the light one's effective mass per pass (it converges by the mass ratio
+// per pass, 0.999 at 1000), so an impact is never stopped and the light body is squeezed out; scaled,
+// the pair converges like an equal-mass one. The lower body then carries the upper one as part of the
+// ground: it is pushed by the upper body's change of velocity, not its momentum.
+void scale_heavy_on_light(SoftContacts& rows)
+{
+    std::vector<uint32_t>& nodes = rows.nodes;
+    nodes.clear();
+    bool stacked = false;
+    for (const SoftPair& sp : rows.pairs) {
+        if (sp.count == 0)
+            continue;
+        if (sp.node_a != k_no_node)
+            nodes.push_back(sp.node_a);
+        if (sp.node_b != k_no_node)
+            nodes.push_back(sp.node_b);
+        stacked = stacked || (sp.node_a != k_no_node && sp.node_b != k_no_node);
+    }
+    if (!stacked || !(rows.gravity > 0.0))
+        return; // no body rests on another
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    auto id = [&](uint32_t node) {
+        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+    };
+    const std::vector<uint32_t> level = contact_levels(rows, nodes);
+    for (SoftPair& sp : rows.pairs) {
+        if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
+            continue;
+        const uint32_t la = level[id(sp.node_a)], lb = level[id(sp.node_b)];
+        const SoftPoint& first = rows.points[sp.first];
+        if (la == 0 || lb == 0 || la == lb || first.a.modal.active() || first.b.modal.active())
+            continue;
+        const bool a_lower = la < lb;
+        if (dot(first.normal, rows.up) * (a_lower ? -1.0 : 1.0) < k_heavy_min_uprightness)
+            continue; // not resting on it: a body thrown against a light one keeps its momentum
+        const double ratio = side_mass_along(a_lower ? first.b : first.a, first.normal) /
+                             side_mass_along(a_lower ? first.a : first.b, first.normal);
+        if (!(ratio >= k_heavy_mass_ratio) || !std::isfinite(ratio))
+            continue;
+        for (uint32_t i = 0; i < sp.count; ++i) {
+            SoftPoint& p = rows.points[sp.first + i];
+            Side& lower = a_lower ? p.a : p.b;
+            lower.inv_mass /= ratio;
+            lower.inv_inertia = add_scaled(Mat3{}, lower.inv_inertia, 1.0 / ratio);
+            const Mat3 k = point_mass_inverse(p.a, p.b);
+            p.normal_mass = inverse_along(k, p.normal);
+            p.tangent_mass[0] = inverse_along(k, p.tangent[0]);
+            p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
+        }
+    }
+}
+
 } // namespace
 
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io)
@@ -343,6 +464,7 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Regist
     rows.push_out_speed = def.soft.push_out_speed;
     rows.restitution_speed = def.soft.restitution_speed;
     rows.gravity = length(ctx.gravity);
+    rows.up = rows.gravity > 0.0 ? ctx.gravity * (-1.0 / rows.gravity) : Vec3{};
     rows.pairs.clear();
     io.contacts.clear();
     io.max_penetration = 0.0;
@@ -362,7 +484,10 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Regist
     prepare_modal_substep(reg, ctx.h);
     // Each pair writes its own rows; the warm start pushes the bodies, so it runs in pair order.
     for (SoftPair& sp : rows.pairs)
-        prepare_pair(def, reg, io, sp, ctx.h);
+        make_pair_rows(reg, io, sp, ctx.h);
+    scale_heavy_on_light(rows);
+    for (SoftPair& sp : rows.pairs)
+        warm_start_pair(def, reg, io, sp, ctx.h);
 }
 
 void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io)

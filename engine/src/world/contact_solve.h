@@ -6,7 +6,8 @@
 // relax pass solves them again without the push-out, so the push-out moves the bodies apart without
 // leaving them the speed it took (Box2D v3's soft step); restitution then sets a bouncing contact's
 // separation speed. A modal body takes each impulse through its modes (world/constraint_side.h), whose
-// compliance at the point joins the effective mass.
+// compliance at the point joins the effective mass. A body resting on one at least 4 times lighter
+// solves their rows with the lighter one's mass scaled up to its own (scale_heavy_on_light).
 #pragma once
 
 #include "dynamics/soft_constraint.h"
@@ -63,6 +64,8 @@ struct SoftContacts {
     double push_out_speed = 0.0;        ///< [m/s].
     double restitution_speed = 0.0;     ///< [m/s].
     double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
+    Vec3 up{};                          ///< −g/|g|, zero without gravity.
+    std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
 };
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
