@@ -4,8 +4,10 @@
 // one buffer refilled by update() and shared with numpy without a copy) and Body.render_mesh.
 #include "bindings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <pybind11/numpy.h>
+#include <string>
 #include <vector>
 
 namespace smpy
