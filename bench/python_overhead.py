@@ -6,9 +6,12 @@ n calls world.step() from a Python loop; their difference per step is what a Pyt
 on a shared machine it is within the steps' own noise, so the cost of one call is also measured alone:
 world.step(0), everything a call does but the step.
 Arrays: World.positions()/orientations() (one call, one numpy copy) against reading Body.position for
-every body, on a world of 10^4 bodies. Each figure is the median of REPEATS interleaved runs; for the
+every body, on a world of 10^4 bodies. Deformed points: 10^5 points on the surface of ball_on_board's
+bent board, read as a new array (Body.deformed_points, point by point), into a given one (out=), and
+through Body.track_points (weights found once; update() refills a buffer numpy views share, then an
+optional copy). Each figure is the median of REPEATS interleaved runs; for the
 steps also the minimum of each (the least disturbed run).
-Usage: PYTHONPATH=build/python python3 bench/python_overhead.py [--steps N] [--repeats R]"""
+Usage: PYTHONPATH=build/python python3 bench/python_overhead.py [--steps N] [--repeats R] [--only deformed]"""
 import argparse
 import json
 import pathlib
@@ -17,6 +20,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import numpy as np
 
 import supermodal as sm
 
@@ -86,12 +91,58 @@ def array_costs(count, repeats):
     return out
 
 
+def surface_points(radii, exponents, count, seed=1):
+    """Random points on a superquadric's surface [m], shape frame (its parametric form)."""
+    rng = np.random.default_rng(seed)
+    eta, omega = rng.uniform(-np.pi / 2, np.pi / 2, count), rng.uniform(-np.pi, np.pi, count)
+    spow = lambda c, e: np.sign(c) * np.abs(c) ** e
+    e1, e2 = exponents
+    return np.stack([radii[0] * spow(np.cos(eta), e1) * spow(np.cos(omega), e2),
+                     radii[1] * spow(np.cos(eta), e1) * spow(np.sin(omega), e2),
+                     radii[2] * spow(np.sin(eta), e1)], axis=1)
+
+
+def deformed_costs(count, repeats):
+    world = sm.load_scene(ROOT / "samples" / "ball_on_board.json")
+    world.step(150)  # the ball has struck: the board is bent
+    board = world.find_body("board")
+    points = surface_points((0.5, 0.019, 0.0445), (0.1, 0.1), count)
+    out = np.empty_like(points)
+    tracked = board.track_points(points)
+    view = tracked.array
+    timings = {"Body.deformed_points(points)": lambda: board.deformed_points(points),
+               "Body.deformed_points(points, out=out)": lambda: board.deformed_points(points, out=out),
+               "DeformedPoints.update() (view, no copy)": tracked.update,
+               "np.copyto(out, DeformedPoints.update())": lambda: np.copyto(out, tracked.update()),
+               "np.array(DeformedPoints.update()) (new copy)": lambda: np.array(tracked.update()),
+               "np.array(view) alone (the copy)": lambda: np.array(view),
+               "Body.track_points(points) (weights, once)": lambda: board.track_points(points)}
+    runs = {name: [] for name in timings}
+    for fn in timings.values():
+        fn()  # warm
+    for _ in range(repeats):  # interleaved, so that the machine's load drifts over all alike
+        for name, fn in timings.items():
+            t = time.perf_counter()
+            fn()
+            runs[name].append(time.perf_counter() - t)
+    assert np.array_equal(tracked.update(), board.deformed_points(points))
+    return {"points": count, "modes": board.mode_count, **{
+        name: {"ms": 1e3 * statistics.median(r), "ns_per_point": 1e9 * statistics.median(r) / count,
+               "min_ms": 1e3 * min(r)}
+        for name, r in runs.items()}}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=200)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--only", choices=["deformed"], help="run one part only")
     args = parser.parse_args()
     report = {"python": sys.version.split()[0], "module": sm.__file__, "step": {}}
+    report["deformed_100k_points"] = deformed_costs(100_000, args.repeats)
+    if args.only == "deformed":
+        print(json.dumps(report, indent=2))
+        return
     with tempfile.TemporaryDirectory() as tmp:
         pile = pathlib.Path(tmp) / "pile_1000.json"
         pile.write_text(subprocess.run([sys.executable, str(ROOT / "bench" / "make_pile_scene.py"), "1000"],

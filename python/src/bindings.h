@@ -4,6 +4,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <optional>
 #include <pybind11/pybind11.h>
@@ -11,6 +12,7 @@
 #include <string>
 #include <supermodal/supermodal.hpp>
 #include <utility>
+#include <vector>
 
 namespace smpy
 {
@@ -23,6 +25,8 @@ struct WorldBox {
     sm::World world;
     std::optional<double> duration; ///< The scene's run length [s]; none for a world made in code.
     std::string source;             ///< The scene's file, "<dict>", "<string>", or empty.
+    /// The scene's render meshes (SceneBody::render_mesh) by body; none for a world made in code.
+    std::map<sm::Entity, std::shared_ptr<const sm::TriangleMesh>> render_meshes;
     explicit WorldBox(sm::World w) : world(std::move(w)) {}
 };
 using WorldPtr = std::shared_ptr<WorldBox>;
@@ -62,6 +66,9 @@ bool to_bool(const py::handle& value, const std::string& argument);
 std::string to_text(const py::handle& value, const std::string& argument);
 sm::Vec3 to_vec3(const py::handle& value, const std::string& argument);
 sm::Quat to_quat(const py::handle& value, const std::string& argument); ///< [w, x, y, z], non-zero.
+/// An (n, 3) array-like of real numbers, every row finite: ArgumentTypeError for another type or
+/// shape, ArgumentError naming the first non-finite row.
+std::vector<sm::Vec3> to_points(const py::object& value, const std::string& argument);
 py::tuple from_vec3(const sm::Vec3& v);
 py::tuple from_quat(const sm::Quat& q);
 
@@ -115,6 +122,7 @@ sm::Constraint live(const Constraint& constraint);
 
 void register_world(py::module_& m);
 void register_bodies(py::module_& m);
+void register_deformed(py::module_& m); ///< After register_bodies: it adds to Body.
 void register_constraints(py::module_& m);
 void register_arrays(py::module_& m);
 void register_events(py::module_& m);

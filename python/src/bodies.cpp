@@ -202,25 +202,15 @@ py::array_t<double> modal_vector(const Body& b, bool rates)
 py::array_t<double> mode_shapes(const Body& b, const py::object& points_arg)
 {
     const sm::Entity e = live(b);
-    py::array_t<double, py::array::c_style | py::array::forcecast> points;
-    try {
-        points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points_arg);
-    } catch (const py::error_already_set&) {
-    }
-    if (!points || points.ndim() != 2 || points.shape(1) != 3)
-        raise_type("points", "expected an (n, 3) array of numbers");
-    const py::ssize_t n = points.shape(0);
-    const auto p = points.unchecked<2>();
-    for (py::ssize_t i = 0; i < n; ++i)
-        if (!std::isfinite(p(i, 0)) || !std::isfinite(p(i, 1)) || !std::isfinite(p(i, 2)))
-            raise_argument("points", "row " + std::to_string(i) + " is not finite");
+    const std::vector<sm::Vec3> points = to_points(points_arg, "points");
+    const auto n = static_cast<py::ssize_t>(points.size());
     const sm::ModalBasis* basis = sm::body_modal_basis(b.box->world, e);
     const py::ssize_t r = basis == nullptr ? 0 : basis->mode_count;
     py::array_t<double> out({r, n, py::ssize_t{3}});
     auto o = out.mutable_unchecked<3>();
     std::vector<double> unit(static_cast<size_t>(r), 0.0);
     for (py::ssize_t i = 0; i < n && r > 0; ++i) {
-        const sm::LatticeWeights w = sm::modal_weights(*basis, {p(i, 0), p(i, 1), p(i, 2)});
+        const sm::LatticeWeights w = sm::modal_weights(*basis, points[static_cast<size_t>(i)]);
         for (py::ssize_t k = 0; k < r; ++k) {
             unit[static_cast<size_t>(k)] = 1.0;
             const sm::Vec3 d = sm::modal_displacement(*basis, w, unit);

@@ -11,6 +11,7 @@ PYBIND11_MODULE(supermodal, m)
     smpy::register_errors(m);
     smpy::register_world(m);
     smpy::register_bodies(m);
+    smpy::register_deformed(m);
     smpy::register_constraints(m);
     smpy::register_arrays(m);
     smpy::register_events(m);

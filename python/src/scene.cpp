@@ -21,6 +21,11 @@ WorldPtr build(const sm::Result<sm::Scene>& scene, const std::string& source)
     auto box = std::make_shared<WorldBox>(std::move(*world));
     box->duration = scene->duration;
     box->source = source;
+    // build_world creates the scene's bodies in file order: world_bodies() lists them in that order.
+    const std::vector<sm::Entity> bodies = sm::world_bodies(box->world);
+    for (size_t i = 0; i < bodies.size() && i < scene->bodies.size(); ++i)
+        if (scene->bodies[i].render_mesh)
+            box->render_meshes.emplace(bodies[i], scene->bodies[i].render_mesh);
     return box;
 }
 

@@ -36,13 +36,13 @@ def test_stubs_name_every_module_attribute():
     assert stubbed - ALIASES <= set(dir(sm))
 
 
-@pytest.mark.parametrize("cls", ["World", "Body", "Constraint", "Material", "ContactEvent", "Contact", "FaultEvent"])
+@pytest.mark.parametrize("cls", ["World", "Body", "DeformedPoints", "Constraint", "Material", "ContactEvent", "Contact", "FaultEvent"])
 def test_stub_classes_match(cls):
     node = next(n for n in stub_tree().body if isinstance(n, ast.ClassDef) and n.name == cls)
     members = {m.name for m in node.body if isinstance(m, ast.FunctionDef)}
     members |= {m.target.id for m in node.body if isinstance(m, ast.AnnAssign)}
     actual = {n for n in dir(getattr(sm, cls)) if not n.startswith("_")}
-    assert members - {"__init__", "__eq__", "__hash__"} == actual
+    assert members - {"__init__", "__eq__", "__hash__", "__len__"} == actual
 
 
 def keywords(cls, method):
