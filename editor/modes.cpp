@@ -55,6 +55,7 @@ Status EditorSession::animate_mode(std::string_view body, const ModeAnimationDef
     a.peak_displacement = def.peak_fraction * extent;
     a.amplitude = a.peak_displacement / largest;
     a.period = def.period;
+    a.accuracy = body_modal_accuracy(*m_world, e);
     const BodyModalState state = body_modal_state(*m_world, e);
     m_animation_q = state.amplitudes;
     m_animation_v = state.velocities;
@@ -121,7 +122,11 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     r.modal = true;
     r.frequencies_hz = basis->frequencies_hz;
     r.amplitudes = body_modal_state(w, e).amplitudes;
-    const ModalAccuracy accuracy = body_modal_accuracy(w, e);
+    const std::optional<ModeAnimation>& a = session.mode_animation();
+    if (a && a->name == body)
+        r.animating = a->mode;
+    // While a mode swings, the report of the state it swings from: the swing is not a load.
+    const ModalAccuracy accuracy = r.animating >= 0 ? a->accuracy : body_modal_accuracy(w, e);
     r.residual = accuracy.residual;
     r.truncated_energy = accuracy.truncated_energy;
     r.truncated_fraction = accuracy.truncated_fraction;
@@ -130,13 +135,10 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     modal_nodal_displacements(*basis, plastic.offsets, nodal);
     for (const Vec3& u : nodal)
         r.plastic_dent = std::max(r.plastic_dent, length(u));
-    const std::optional<ModeAnimation>& a = session.mode_animation();
-    if (a && a->name == body)
-        r.animating = a->mode;
 
     add_line(r, "%d modes, natural frequency [Hz], amplitude q [sqrt(kg) m]", basis->mode_count);
     for (size_t k = 0; k < r.frequencies_hz.size(); ++k)
-        add_line(r, "%2zu  %10.4g Hz  q %10.3e", k + 1, r.frequencies_hz[k], r.amplitudes[k]);
+        add_line(r, "%7.4g Hz  q %9.2e", r.frequencies_hz[k], r.amplitudes[k]); // after "Animate k"
     add_line(r, "modal residual %.3e (0: the modes hold the last loads)", r.residual);
     add_line(r, "truncated energy %.3e J (%.3e of the static response)", r.truncated_energy,
              r.truncated_fraction);

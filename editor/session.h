@@ -73,6 +73,7 @@ struct ModeAnimation {
     double peak_displacement = 0.0; ///< Largest lattice-node displacement at the swing's peak [m].
     double period = 1.0;            ///< [s], wall time.
     double time = 0.0;              ///< Wall time animated so far [s].
+    ModalAccuracy accuracy;         ///< The body's accuracy report when it began (the swing is no load).
 };
 
 /// One applied set(): enough to undo and redo it.

@@ -120,7 +120,7 @@ void draw_modes(EditorUi& ui, const std::string& name)
             ImGui::EndDisabled();
         ui.track(label.c_str());
         ImGui::SameLine();
-        ImGui::Text("%10.4g Hz  q %10.3e", r.frequencies_hz[k], r.amplitudes[k]);
+        ImGui::TextUnformatted(r.lines[k + 1].c_str());
     }
     for (size_t i = 1 + r.frequencies_hz.size(); i < r.lines.size(); ++i)
         ImGui::TextWrapped("%s", r.lines[i].c_str());

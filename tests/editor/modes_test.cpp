@@ -65,7 +65,7 @@ TEST(EditorModes, PanelShowsTheBasisFrequencies)
     EXPECT_EQ(r.plastic_dent, 0.0);     // wood here has no yield stress
     // The drawn text: each frequency as formatted, one Animate button per mode.
     char first[64];
-    std::snprintf(first, sizeof first, "%10.4g Hz", basis->frequencies_hz[0]);
+    std::snprintf(first, sizeof first, "%7.4g Hz", basis->frequencies_hz[0]);
     EXPECT_NE(r.lines[1].find(first), std::string::npos) << r.lines[1];
     for (int k = 1; k <= 8; ++k)
         EXPECT_TRUE(drawn(ui, "Animate " + std::to_string(k))) << k;
@@ -99,6 +99,7 @@ TEST(EditorModes, AnimationMovesOneModeAndStopRestoresTheState)
     sm::Vec3 surface[3];
     for (int i = 0; i < 3; ++i)
         surface[i] = sm::body_deformed_point(w, board, k_points[i]);
+    const sm::ModalAccuracy accuracy = sm::body_modal_accuracy(w, board);
     ASSERT_NE(before.amplitudes[2], 0.0); // the supports load the third mode too: a real offset to keep
 
     const int k = 2;
@@ -136,6 +137,16 @@ TEST(EditorModes, AnimationMovesOneModeAndStopRestoresTheState)
         moved = std::max(moved, sm::length(got));
     }
     EXPECT_GT(moved, 0.01); // visible: centimetres at the peak
+    // The panel keeps the accuracy report of the state the swing started from, and lists the swung q.
+    const ed::ModesReadout shown = ed::modes_readout(s, "board");
+    EXPECT_EQ(shown.animating, k);
+    EXPECT_EQ(shown.residual, accuracy.residual);
+    EXPECT_EQ(shown.truncated_energy, accuracy.truncated_energy);
+    EXPECT_EQ(shown.amplitudes, during.amplitudes);
+    ed::EditorUi ui(s);
+    ui.select_body("board");
+    ui.frame(0.0);
+    EXPECT_EQ(ui.speed_accuracy.modal_residual, accuracy.residual);
 
     s.stop_mode_animation();
     EXPECT_FALSE(s.mode_animation().has_value());
