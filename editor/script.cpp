@@ -517,6 +517,8 @@ void run_modes(const ActionContext& c)
         c.log << " " << f;
     c.log << std::setprecision(6) << "; residual " << r.residual << ", truncated energy "
           << r.truncated_energy << " J";
+    if (r.plastic_dent > 0.0)
+        c.log << "; plastic dent " << r.plastic_dent << " m";
     if (r.animating >= 0)
         c.log << "; mode " << r.animating + 1 << " animated";
 }

@@ -97,6 +97,8 @@ void draw_modes(EditorUi& ui, const std::string& name)
     ui.track("Mode shapes##body");
     EditorSession& session = ui.session();
     ui.modes = modes_readout(session, name);
+    if (!ui.modes.modal)
+        return; // a Rigid press above has just rebuilt the body without modes
     ui.modes.shown = true;
     const ModesReadout r = ui.modes; // a copy: a pressed button changes the world drawn from
     if (r.animating >= 0) {

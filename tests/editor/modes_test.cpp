@@ -256,3 +256,20 @@ TEST(EditorModes, RigidBodyShowsNoModes)
     ASSERT_EQ(run(s, ui, R"({"action": "modes", "body": "ball"})", log).failure, ed::ScriptFailure::None);
     EXPECT_NE(log.find("ball: rigid, no modes"), std::string::npos) << log;
 }
+
+TEST(EditorModes, MouldedClayListsItsDent)
+{
+    // The clay block of the moulding test, pressed 12 mm from above and let go: the dent it keeps is
+    // listed (the modes stay those of the unmoulded block, and the line says so).
+    ed::EditorSession s;
+    ASSERT_TRUE(s.load(std::string(SM_SOURCE_DIR) + "/tests/editor/clay.json"));
+    s.step(300);
+    EXPECT_EQ(ed::modes_readout(s, "clay").plastic_dent, 0.0);
+    ASSERT_TRUE(s.mould(ed::Ray{{0.0, 0.5, 0.0}, {0, -1, 0}}, 0.012, 300));
+    s.step(600);
+    const ed::ModesReadout r = ed::modes_readout(s, "clay");
+    EXPECT_GT(r.plastic_dent, 0.005); // the moulding test keeps > half of a 10 mm press
+    EXPECT_LT(r.plastic_dent, 0.05);
+    EXPECT_NE(r.lines.back().find("plastic dent"), std::string::npos) << r.lines.back();
+    EXPECT_NE(r.lines.back().find("unmoulded shape"), std::string::npos);
+}
