@@ -2,6 +2,8 @@
 // Mode shapes in the editor: a modal body swinging in one of its modes while the world is held still,
 // and what the Body window lists about its modes.
 #include "session.h"
+#include "supermodal/body.h"
+#include "supermodal/geometry.h"
 #include "ui.h"
 
 #include <algorithm>
@@ -131,10 +133,16 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     r.truncated_energy = accuracy.truncated_energy;
     r.truncated_fraction = accuracy.truncated_fraction;
     const BodyPlasticState plastic = body_plastic_state(w, e);
-    std::vector<Vec3> nodal;
-    modal_nodal_displacements(*basis, plastic.offsets, nodal);
-    for (const Vec3& u : nodal)
-        r.plastic_dent = std::max(r.plastic_dent, length(u));
+    if (std::any_of(plastic.offsets.begin(), plastic.offsets.end(), [](double q) { return q != 0.0; })) {
+        // Over surface samples about 1/40 of the body apart: lattice nodes outside the material would
+        // overstate the dent.
+        double extent = 0.0;
+        for (int axis = 0; axis < 3; ++axis)
+            extent = std::max(extent, basis->cells[axis] * basis->cell_size[axis]);
+        for (const SurfaceSample& p : sample_surface(body_shape(w, e), extent / 40.0, 2000))
+            r.plastic_dent =
+                std::max(r.plastic_dent, length(modal_displacement(*basis, p.point, plastic.offsets)));
+    }
 
     add_line(r, "%d modes, natural frequency [Hz], amplitude q [sqrt(kg) m]", basis->mode_count);
     for (size_t k = 0; k < r.frequencies_hz.size(); ++k)
@@ -143,7 +151,9 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     add_line(r, "truncated energy %.3e J (%.3e of the static response)", r.truncated_energy,
              r.truncated_fraction);
     if (r.plastic_dent > 0.0)
-        add_line(r, "plastic dent %.3g mm; the modes are those of the unmoulded shape", 1e3 * r.plastic_dent);
+        add_line(r,
+                 "plastic dent: the surface kept up to %.3g mm; the modes are those of the unmoulded shape",
+                 1e3 * r.plastic_dent);
     return r;
 }
 
