@@ -17,7 +17,7 @@ Status EditorSession::animate_mode(std::string_view body, const ModeAnimationDef
 {
     if (!m_world)
         return Error{"", "", "no scene is loaded"};
-    stop_mode_animation();
+    end_mode_animation();
     const std::string name(body);
     const Entity e = find_body(*m_world, name);
     if (e.is_null())
@@ -77,7 +77,7 @@ void EditorSession::apply_mode_animation()
     (void)set_body_modal_state(*m_world, a.body, q, m_animation_v); // sizes and values checked above
 }
 
-void EditorSession::stop_mode_animation()
+void EditorSession::end_mode_animation()
 {
     if (!m_animation)
         return;
@@ -92,7 +92,7 @@ void EditorSession::stop_mode_animation()
 
 void EditorSession::play()
 {
-    stop_mode_animation();
+    end_mode_animation();
     m_playing = true;
 }
 

@@ -523,17 +523,18 @@ void run_modes(const ActionContext& c)
         c.log << "; mode " << r.animating + 1 << " animated";
 }
 
-/// Starts a mode animation ("mode", 1 = lowest) or ends it ("stop": true).
+/// Starts a mode animation ("mode", 1 = lowest) or ends it ("restore": true).
 void run_animate(const ActionContext& c)
 {
-    if (c.action.contains("stop") == c.action.contains("mode"))
-        fail(c.where, "expected either \"mode\" (1 = the lowest) or \"stop\": true");
-    if (c.action.contains("stop")) {
-        if (c.action["stop"] != true || c.action.contains("body"))
-            fail(c.where + "/stop", "expected \"stop\": true alone, found " + kind_of(c.action["stop"]));
+    if (c.action.contains("restore") == c.action.contains("mode"))
+        fail(c.where, "expected either \"mode\" (1 = the lowest) or \"restore\": true");
+    if (c.action.contains("restore")) {
+        if (c.action["restore"] != true || c.action.contains("body"))
+            fail(c.where + "/restore",
+                 "expected \"restore\": true alone, found " + kind_of(c.action["restore"]));
         const bool was = c.session.mode_animation().has_value();
-        c.session.stop_mode_animation();
-        c.log << (was ? " stopped: the state is restored" : " (no animation ran)");
+        c.session.end_mode_animation();
+        c.log << (was ? " ended: the world is restored" : " (no animation ran)");
         return;
     }
     const std::string name = body_or_selected(c);
@@ -596,7 +597,7 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"resize", {{"width", "height"}, run_resize}},
     {"save", {{"file", "state"}, run_save}},
     {"modes", {{"body"}, run_modes}},
-    {"animate", {{"body", "mode", "stop"}, run_animate}},
+    {"animate", {{"body", "mode", "restore"}, run_animate}},
 };
 
 void run_action(const Json& action, const std::string& where, const std::filesystem::path& base_dir,

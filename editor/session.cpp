@@ -26,7 +26,7 @@ void EditorSession::share_bases(Scene& scene) const
 
 Status EditorSession::load_scene(Scene scene)
 {
-    stop_mode_animation();
+    end_mode_animation();
     Status status = install(std::move(scene));
     if (status) {
         ++m_loads;
@@ -38,7 +38,7 @@ Status EditorSession::load_scene(Scene scene)
 
 Status EditorSession::install(Scene scene)
 {
-    stop_mode_animation();
+    end_mode_animation();
     share_bases(scene);
     Result<World> world = build_world(scene);
     if (!world)
@@ -59,7 +59,7 @@ Status EditorSession::install(Scene scene)
 
 Status EditorSession::reset()
 {
-    stop_mode_animation();
+    end_mode_animation();
     const bool was_playing = m_playing;
     Status status = install(m_scene);
     m_playing = was_playing;
@@ -97,7 +97,7 @@ void EditorSession::step(int count)
 {
     if (!m_world)
         return;
-    stop_mode_animation();
+    end_mode_animation();
     for (int i = 0; i < count; ++i)
         m_world->step(); // the step listener applies the loads
     record_last_step();
@@ -198,7 +198,7 @@ Status EditorSession::save(const std::string& path, bool current_state) const
 
 Status EditorSession::rebuild_keeping_state(const Scene& edited)
 {
-    stop_mode_animation();
+    end_mode_animation();
     Scene running = edited;
     // Bodies keep where they are and how they move; a renamed body starts from its scene pose.
     if (m_world)

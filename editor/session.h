@@ -167,7 +167,7 @@ class EditorSession
     Status animate_mode(std::string_view body, const ModeAnimationDef& def = {});
     /// Ends a mode animation: the world is restored from its snapshot (state_hash() as before, to the
     /// bit) and plays again if it was playing. Nothing when none runs.
-    void stop_mode_animation();
+    void end_mode_animation();
     [[nodiscard]] const std::optional<ModeAnimation>& mode_animation() const { return m_animation; }
 
     /// Saves what the world shows now (poses, velocities, edited shapes) when `current_state`, else the

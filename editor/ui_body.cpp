@@ -102,11 +102,11 @@ void draw_modes(EditorUi& ui, const std::string& name)
     ui.modes.shown = true;
     const ModesReadout r = ui.modes; // a copy: a pressed button changes the world drawn from
     if (r.animating >= 0) {
-        if (ImGui::Button("Stop##modes"))
-            session.stop_mode_animation();
-        ui.track("Stop##modes");
+        if (ImGui::Button("Restore##modes"))
+            session.end_mode_animation();
+        ui.track("Restore##modes");
         ImGui::SameLine();
-        ImGui::TextWrapped("mode %d swings (paused; Stop restores the state)", r.animating + 1);
+        ImGui::TextWrapped("mode %d swings (paused; Restore ends it)", r.animating + 1);
     }
     ImGui::TextWrapped("%s", r.lines.front().c_str());
     for (size_t k = 0; k < r.frequencies_hz.size(); ++k) {

@@ -84,7 +84,7 @@ TEST(EditorModes, PanelShowsTheBasisFrequencies)
     }
 }
 
-TEST(EditorModes, AnimationMovesOneModeAndStopRestoresTheState)
+TEST(EditorModes, AnimationMovesOneModeAndRestoreGivesTheStateBack)
 {
     ed::EditorSession s;
     ASSERT_TRUE(s.load(k_board));
@@ -148,7 +148,7 @@ TEST(EditorModes, AnimationMovesOneModeAndStopRestoresTheState)
     ui.frame(0.0);
     EXPECT_EQ(ui.speed_accuracy.modal_residual, accuracy.residual);
 
-    s.stop_mode_animation();
+    s.end_mode_animation();
     EXPECT_FALSE(s.mode_animation().has_value());
     EXPECT_EQ(w.state_hash(), hash);
     EXPECT_TRUE(s.playing()); // it was playing before
@@ -171,7 +171,7 @@ TEST(EditorModes, FromRestOtherModesStayZero)
     EXPECT_NE(during.amplitudes[0], 0.0);
     for (size_t j = 1; j < during.amplitudes.size(); ++j)
         EXPECT_EQ(during.amplitudes[j], 0.0) << j;
-    s.stop_mode_animation();
+    s.end_mode_animation();
     EXPECT_EQ(s.world().state_hash(), hash);
 }
 
@@ -208,21 +208,21 @@ TEST(EditorModes, ButtonsAndScriptActions)
     ui.frame(0.2);
     EXPECT_EQ(ui.modes.animating, 1); // the panel says so from the next frame
     EXPECT_NE(s.world().state_hash(), hash);
-    ASSERT_TRUE(ui.press("Stop"));
+    ASSERT_TRUE(ui.press("Restore"));
     EXPECT_FALSE(s.mode_animation().has_value());
     EXPECT_EQ(s.world().state_hash(), hash);
 
     std::string log;
     ASSERT_EQ(run(s, ui,
                   R"({"action": "animate", "body": "board", "mode": 3}, {"action": "frames", "count": 10},
-                     {"action": "modes"}, {"action": "animate", "stop": true})",
+                     {"action": "modes"}, {"action": "animate", "restore": true})",
                   log)
                   .failure,
               ed::ScriptFailure::None)
         << log;
     EXPECT_NE(log.find("board mode 3 ("), std::string::npos) << log;
     EXPECT_NE(log.find("mode 3 animated"), std::string::npos) << log; // "modes" uses the selection
-    EXPECT_NE(log.find("stopped: the state is restored"), std::string::npos) << log;
+    EXPECT_NE(log.find("ended: the world is restored"), std::string::npos) << log;
     EXPECT_EQ(s.world().state_hash(), hash);
 
     // Refused: a mode out of range, a rigid body, both keys; nothing changes.
@@ -232,7 +232,7 @@ TEST(EditorModes, ButtonsAndScriptActions)
     EXPECT_NE(bad.error.what.find("modes 1 to 8, not 9"), std::string::npos) << bad.error.what;
     bad = run(s, ui, R"({"action": "animate", "body": "ball", "mode": 1})", log);
     EXPECT_NE(bad.error.what.find("\"ball\" is rigid"), std::string::npos) << bad.error.what;
-    bad = run(s, ui, R"({"action": "animate", "mode": 1, "stop": true})", log);
+    bad = run(s, ui, R"({"action": "animate", "mode": 1, "restore": true})", log);
     EXPECT_EQ(bad.error.where, "/actions/0");
     EXPECT_FALSE(s.mode_animation().has_value());
     EXPECT_EQ(s.world().state_hash(), hash);
