@@ -30,6 +30,7 @@ double EditorSession::sink_along(Entity body, const Vec3& point_shape, const Vec
 
 Status EditorSession::mould(const Ray& ray, double depth, int steps)
 {
+    end_mode_animation();
     if (!(std::isfinite(depth) && depth > 0.0 && depth <= 1.0) || steps < 1)
         return Error{"", "", "moulding needs a depth in (0, 1] m and at least one step"};
     const std::optional<PickHit> hit = pick(ray);

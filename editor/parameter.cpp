@@ -194,6 +194,7 @@ Status EditorSession::redo()
 Status EditorSession::apply_edit(const std::string& path, const std::string& resolved,
                                  const std::optional<Json>& value)
 {
+    end_mode_animation();
     Result<Json> json = written_scene(m_scene);
     if (!json)
         return json.error();

@@ -103,6 +103,7 @@ std::optional<PickHit> EditorSession::pick(const Ray& ray) const
 
 Status EditorSession::drag_begin(const Ray& ray)
 {
+    end_mode_animation();
     const std::optional<PickHit> hit = pick(ray);
     if (!hit)
         return Error{"", "", "the ray hits no body"};
@@ -124,6 +125,7 @@ void EditorSession::drag_to(const Vec3& target)
 
 Status EditorSession::push(const Ray& ray, double force, int steps)
 {
+    end_mode_animation();
     if (!(std::isfinite(force) && force >= 0.0) || steps < 1)
         return Error{"", "", "a push needs a finite force >= 0 N and at least one step"};
     const std::optional<PickHit> hit = pick(ray);

@@ -491,6 +491,62 @@ void run_camera(const ActionContext& c)
     c.log << ", " << checked << " bodies framed";
 }
 
+/// "body", or the selected body when it is absent; an error naming the key when there is neither.
+std::string body_or_selected(const ActionContext& c)
+{
+    const std::string name =
+        c.action.contains("body") ? text(c.action, c.where, "body") : c.ui.selected_body();
+    if (name.empty())
+        fail(c.where, "expected \"body\" (no body is selected)");
+    if (find_body(c.session.world(), name).is_null())
+        fail(c.where + (c.action.contains("body") ? "/body" : ""), "no body named \"" + name + "\"");
+    return name;
+}
+
+/// Logs a body's modes as the Body window lists them, frequencies to the last bit (17 digits).
+void run_modes(const ActionContext& c)
+{
+    const std::string name = body_or_selected(c);
+    const ModesReadout r = modes_readout(c.session, name);
+    if (!r.modal) {
+        c.log << " " << name << ": rigid, no modes";
+        return;
+    }
+    c.log << " " << name << ": " << r.frequencies_hz.size() << " modes [Hz]" << std::setprecision(17);
+    for (double f : r.frequencies_hz)
+        c.log << " " << f;
+    c.log << std::setprecision(6) << "; residual " << r.residual << ", truncated energy "
+          << r.truncated_energy << " J";
+    if (r.plastic_dent > 0.0)
+        c.log << "; plastic dent " << r.plastic_dent << " m";
+    if (r.animating >= 0)
+        c.log << "; mode " << r.animating + 1 << " animated";
+}
+
+/// Starts a mode animation ("mode", 1 = lowest) or ends it ("restore": true).
+void run_animate(const ActionContext& c)
+{
+    if (c.action.contains("restore") == c.action.contains("mode"))
+        fail(c.where, "expected either \"mode\" (1 = the lowest) or \"restore\": true");
+    if (c.action.contains("restore")) {
+        if (c.action["restore"] != true || c.action.contains("body"))
+            fail(c.where + "/restore",
+                 "expected \"restore\": true alone, found " + kind_of(c.action["restore"]));
+        const bool was = c.session.mode_animation().has_value();
+        c.session.end_mode_animation();
+        c.log << (was ? " ended: the world is restored" : " (no animation ran)");
+        return;
+    }
+    const std::string name = body_or_selected(c);
+    const int mode = count(c.action, c.where, "mode", 1);
+    ModeAnimationDef def;
+    def.mode = mode - 1;
+    check(c.session.animate_mode(name, def), c.where + "/mode");
+    const ModeAnimation& a = *c.session.mode_animation();
+    c.log << " " << name << " mode " << mode << " (" << a.frequency_hz << " Hz): swing " << a.amplitude
+          << " sqrt(kg) m, peak " << a.peak_displacement << " m, one swing per " << a.period << " s";
+}
+
 void run_windows(const ActionContext& c)
 {
     const Json& show = required(c.action, c.where, "show");
@@ -540,6 +596,8 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"viewport", {{"min_fraction"}, run_viewport}},
     {"resize", {{"width", "height"}, run_resize}},
     {"save", {{"file", "state"}, run_save}},
+    {"modes", {{"body"}, run_modes}},
+    {"animate", {{"body", "mode", "restore"}, run_animate}},
 };
 
 void run_action(const Json& action, const std::string& where, const std::filesystem::path& base_dir,

@@ -26,6 +26,7 @@ void EditorSession::share_bases(Scene& scene) const
 
 Status EditorSession::load_scene(Scene scene)
 {
+    end_mode_animation();
     Status status = install(std::move(scene));
     if (status) {
         ++m_loads;
@@ -37,6 +38,7 @@ Status EditorSession::load_scene(Scene scene)
 
 Status EditorSession::install(Scene scene)
 {
+    end_mode_animation();
     share_bases(scene);
     Result<World> world = build_world(scene);
     if (!world)
@@ -57,6 +59,7 @@ Status EditorSession::install(Scene scene)
 
 Status EditorSession::reset()
 {
+    end_mode_animation();
     const bool was_playing = m_playing;
     Status status = install(m_scene);
     m_playing = was_playing;
@@ -94,6 +97,7 @@ void EditorSession::step(int count)
 {
     if (!m_world)
         return;
+    end_mode_animation();
     for (int i = 0; i < count; ++i)
         m_world->step(); // the step listener applies the loads
     record_last_step();
@@ -101,6 +105,11 @@ void EditorSession::step(int count)
 
 int EditorSession::frame(double real_seconds)
 {
+    if (m_animation && real_seconds > 0.0) {
+        m_animation->time += real_seconds; // the world holds still: no step runs
+        apply_mode_animation();
+        return 0;
+    }
     if (!m_world || !m_playing || !(real_seconds > 0.0))
         return 0;
     const int steps = m_world->advance(real_seconds);
@@ -134,6 +143,12 @@ EditorSession& EditorSession::operator=(EditorSession&& other) noexcept
     m_history = std::move(other.m_history);
     m_history_position = other.m_history_position;
     m_last_effect = other.m_last_effect;
+    m_animation = std::move(other.m_animation);
+    m_animation_start = std::move(other.m_animation_start);
+    m_animation_q = std::move(other.m_animation_q);
+    m_animation_v = std::move(other.m_animation_v);
+    m_animation_was_playing = other.m_animation_was_playing;
+    other.m_animation.reset();
     if (m_world)
         attach_step_listener();
     return *this;
@@ -183,6 +198,7 @@ Status EditorSession::save(const std::string& path, bool current_state) const
 
 Status EditorSession::rebuild_keeping_state(const Scene& edited)
 {
+    end_mode_animation();
     Scene running = edited;
     // Bodies keep where they are and how they move; a renamed body starts from its scene pose.
     if (m_world)

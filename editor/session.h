@@ -53,6 +53,29 @@ struct DragSpring {
     double damping_ratio = 0.7; ///< [-]; 0.7 settles without ringing.
 };
 
+/// How a mode shape is shown: one body swinging in one of its modes while the world is held still.
+struct ModeAnimationDef {
+    int mode = 0;               ///< Index into the body's modes, 0 = the lowest [-].
+    double peak_fraction = 0.1; ///< Largest lattice-node displacement of the swing, as a fraction of the
+                                ///< body's largest half-extent (its lattice box) [-]: visible, still small.
+    double period = 1.0;        ///< Wall time of one shown swing [s]: a mode's own period (milliseconds
+                                ///< for a wooden board) is far too short to watch.
+};
+
+/// A mode animation running: q_k = q_k,0 + amplitude · sin(2π time / period), every other amplitude
+/// and rate kept at what it was when the animation began.
+struct ModeAnimation {
+    Entity body{};
+    std::string name;
+    int mode = 0;                   ///< [-], 0 = the lowest.
+    double frequency_hz = 0.0;      ///< The mode's natural frequency [Hz].
+    double amplitude = 0.0;         ///< Swing of q_k [√kg·m].
+    double peak_displacement = 0.0; ///< Largest lattice-node displacement at the swing's peak [m].
+    double period = 1.0;            ///< [s], wall time.
+    double time = 0.0;              ///< Wall time animated so far [s].
+    ModalAccuracy accuracy;         ///< The body's accuracy report when it began (the swing is no load).
+};
+
 /// One applied set(): enough to undo and redo it.
 struct SceneEdit {
     std::string path;           ///< As given to set() (body names allowed).
@@ -78,7 +101,8 @@ class EditorSession
     /// Rebuilds the world from the scene: back to its initial poses, with every edit kept.
     Status reset();
 
-    void play() { m_playing = true; }
+    /// Plays (a running mode animation ends first).
+    void play();
     void pause() { m_playing = false; }
     [[nodiscard]] bool playing() const { return m_playing; }
     /// Runs `count` fixed steps now, playing or not, with the drag spring and push loads applied.
@@ -136,6 +160,16 @@ class EditorSession
     /// `direction_shape` (unit, shape frame) since the rest shape, in the body's frame [m].
     [[nodiscard]] double sink_along(Entity body, const Vec3& point_shape, const Vec3& direction_shape) const;
 
+    /// Shows a mode shape: pauses, remembers the whole world (World::snapshot), then each frame() sets the
+    /// body's amplitude of mode `def.mode` to its value then plus a sine swing; no step runs. Anything that
+    /// changes or runs the world (play, step, an edit, undo, reset, load, drag, push, mould) ends it first.
+    /// Fails for an unknown or rigid body, a mode out of range, or a period or fraction not > 0.
+    Status animate_mode(std::string_view body, const ModeAnimationDef& def = {});
+    /// Ends a mode animation: the world is restored from its snapshot (state_hash() as before, to the
+    /// bit) and plays again if it was playing. Nothing when none runs.
+    void end_mode_animation();
+    [[nodiscard]] const std::optional<ModeAnimation>& mode_animation() const { return m_animation; }
+
     /// Saves what the world shows now (poses, velocities, edited shapes) when `current_state`, else the
     /// scene as loaded and edited (its initial poses). Atomic (save_scene).
     Status save(const std::string& path, bool current_state = true) const;
@@ -167,6 +201,7 @@ class EditorSession
     void before_step();
     void record_last_step();
     void apply_mould();
+    void apply_mode_animation();
 
     struct PushLoad {
         Entity body{};
@@ -202,6 +237,10 @@ class EditorSession
     uint64_t m_loads = 0;
     std::vector<SceneEdit> m_history;
     size_t m_history_position = 0;
+    std::optional<ModeAnimation> m_animation;
+    std::optional<Snapshot> m_animation_start;        ///< The world when the animation began.
+    std::vector<double> m_animation_q, m_animation_v; ///< The body's amplitudes and rates then.
+    bool m_animation_was_playing = false;
 };
 
 /// The pointer with body and constraint names replaced by their indices in `scene`

@@ -44,6 +44,24 @@ struct SpeedAccuracyReadout {
     std::vector<std::string> lines;  ///< The text lines, as drawn.
 };
 
+/// The Modes section of the Body window for one body: its modes and how well they hold its loads.
+struct ModesReadout {
+    bool shown = false;                 ///< Drawn in the last frame (a modal body selected, section open).
+    std::string body;                   ///< The body asked about.
+    bool modal = false;                 ///< It has modes; false for a rigid body (or none of that name).
+    bool rigid = false;                 ///< A rigid body of that name: no modes to list.
+    std::vector<double> frequencies_hz; ///< (r) natural frequencies of its basis [Hz], ascending.
+    std::vector<double> amplitudes;     ///< (r) modal amplitudes now [√kg·m] (plastic offsets included).
+    double residual = 0.0;              ///< body_modal_accuracy().residual [-].
+    double truncated_energy = 0.0;      ///< body_modal_accuracy().truncated_energy [J].
+    double truncated_fraction = 0.0;    ///< body_modal_accuracy().truncated_fraction [-].
+    double plastic_dent = 0.0;          ///< Largest surface displacement of the plastic offsets [m].
+    int animating = -1;                 ///< The mode being animated (0 = lowest), or −1.
+    std::vector<std::string> lines;     ///< The text lines (the panel adds one button per mode).
+};
+/// What the Modes section shows for `body` now (a script's `modes` action logs the same).
+[[nodiscard]] ModesReadout modes_readout(const EditorSession& session, const std::string& body);
+
 /// A rectangle of the display [px], top-left origin.
 struct ScreenRect {
     float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -146,6 +164,8 @@ class EditorUi
     double view_aspect = 0.0;     ///< The 3-D view's width / height view_camera was framed for.
     /// The Speed / accuracy window's values in the last frame.
     SpeedAccuracyReadout speed_accuracy;
+    /// The Body window's Modes section in the last frame.
+    ModesReadout modes;
     /// Where the Save button writes.
     std::string save_path = "scene_saved.json";
     /// Steps the Step button runs.

@@ -86,10 +86,53 @@ void draw_dynamics(EditorUi& ui, const std::string& base, const SceneBody& body)
     ui.track("Lattice (0 = auto)##body");
 }
 
+/// The modes of a modal body: each with its frequency, amplitude and a button that animates it; the
+/// modal residual and truncated energy of its last loads; a kept plastic dent.
+void draw_modes(EditorUi& ui, const std::string& name)
+{
+    if (!ImGui::CollapsingHeader("Mode shapes##body", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ui.track("Mode shapes##body");
+        return;
+    }
+    ui.track("Mode shapes##body");
+    EditorSession& session = ui.session();
+    ui.modes = modes_readout(session, name);
+    if (!ui.modes.modal)
+        return; // a Rigid press above has just rebuilt the body without modes
+    ui.modes.shown = true;
+    const ModesReadout r = ui.modes; // a copy: a pressed button changes the world drawn from
+    if (r.animating >= 0) {
+        if (ImGui::Button("Restore##modes"))
+            session.end_mode_animation();
+        ui.track("Restore##modes");
+        ImGui::SameLine();
+        ImGui::TextWrapped("mode %d swings (paused; Restore ends it)", r.animating + 1);
+    }
+    ImGui::TextWrapped("%s", r.lines.front().c_str());
+    for (size_t k = 0; k < r.frequencies_hz.size(); ++k) {
+        const std::string label = "Animate " + std::to_string(k + 1);
+        if (static_cast<int>(k) == r.animating)
+            ImGui::BeginDisabled();
+        if (ImGui::SmallButton(label.c_str())) {
+            ModeAnimationDef def;
+            def.mode = static_cast<int>(k);
+            ui.report(session.animate_mode(name, def));
+        }
+        if (static_cast<int>(k) == r.animating)
+            ImGui::EndDisabled();
+        ui.track(label.c_str());
+        ImGui::SameLine();
+        ImGui::TextUnformatted(r.lines[k + 1].c_str());
+    }
+    for (size_t i = 1 + r.frequencies_hz.size(); i < r.lines.size(); ++i)
+        ImGui::TextWrapped("%s", r.lines[i].c_str());
+}
+
 } // namespace
 
 void draw_body_window(EditorUi& ui)
 {
+    ui.modes = ModesReadout{};
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     dock_next_window(panel_layout(display.x, display.y, ui.scale()).body);
     if (ImGui::Begin("Body")) {
@@ -123,6 +166,9 @@ void draw_body_window(EditorUi& ui)
                 ImGui::Separator();
                 ImGui::TextUnformatted("Dynamics");
                 draw_dynamics(ui, base, body);
+                // Last: Animate pauses the world and an edit above may rebuild it.
+                if (body.dynamics == DynamicsType::Modal)
+                    draw_modes(ui, body.def.name);
             }
         }
         ImGui::PopItemWidth();

@@ -91,7 +91,10 @@ void draw_modal_readout(EditorUi& ui)
         ImGui::TextDisabled("select a modal body for its modes");
         return;
     }
-    const ModalAccuracy accuracy = body_modal_accuracy(s.world(), e);
+    // While one of its modes swings, the report of the state it swings from (as the Mode shapes list).
+    const std::optional<ModeAnimation>& swing = s.mode_animation();
+    const ModalAccuracy accuracy =
+        swing && swing->body == e ? swing->accuracy : body_modal_accuracy(s.world(), e);
     const auto& res = basis->diagnostics.mode_residuals;
     r.modal_body = ui.selected_body();
     r.modes = basis->mode_count;
