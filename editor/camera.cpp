@@ -24,25 +24,11 @@ double tan_half_fov(const CameraDef& camera)
     return std::tan(0.5 * std::clamp(camera.fov_deg, k_min_fov, k_max_fov) * k_deg);
 }
 
-/// The distance from `target` at which every corner of every box is inside the view, times margin.
+/// framing_distance() times margin (≥ 1).
 double fit_distance(const CameraDef& camera, const Vec3& target, std::span<const Aabb> boxes, double aspect,
                     double margin)
 {
-    // A corner at offset r from the target, seen from distance d, is at depth d − r·back and must
-    // have |r·right| ≤ depth·tan_h and |r·up| ≤ depth·tan_v.
-    const CameraAxes axes = camera_axes(camera);
-    const double tan_v = tan_half_fov(camera);
-    const double tan_h = tan_v * std::clamp(aspect, 0.1, 10.0);
-    double d = 0.0;
-    for (const Aabb& box : boxes)
-        for (int k = 0; k < 8; ++k) {
-            const Vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
-                              (k & 4) ? box.max.z : box.min.z};
-            const Vec3 r = corner - target;
-            d = std::max(d, dot(r, axes.back) + std::max(std::abs(dot(r, axes.right)) / tan_h,
-                                                         std::abs(dot(r, axes.up)) / tan_v));
-        }
-    return std::max(margin, 1.0) * std::max(d, 1e-3);
+    return std::max(margin, 1.0) * framing_distance(camera, target, boxes, aspect);
 }
 
 /// The boxes, or a 2 m cube at the origin when there are none (nothing to frame).
@@ -65,17 +51,6 @@ Vec3 centre_of(std::span<const Aabb> boxes)
 }
 
 } // namespace
-
-CameraAxes camera_axes(const CameraDef& camera)
-{
-    const double yaw = camera.yaw_deg * k_deg;
-    const double pitch = std::clamp(camera.pitch_deg, -k_max_pitch, k_max_pitch) * k_deg;
-    CameraAxes a;
-    a.back = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
-    a.right = normalized(cross(-a.back, Vec3{0, 1, 0}));
-    a.up = cross(a.right, -a.back);
-    return a;
-}
 
 Vec3 camera_eye(const CameraDef& camera)
 {

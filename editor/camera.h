@@ -7,6 +7,7 @@
 
 #include "session.h"
 #include "supermodal/geometry.h"
+#include "supermodal/render.h"
 #include "supermodal/scene.h"
 
 #include <array>
@@ -19,11 +20,8 @@ namespace supermodal::editor
 
 class EditorUi;
 
-/// Unit axes of the camera, world frame: `back` from the target to the eye, `right` and `up` on screen.
-struct CameraAxes {
-    Vec3 back{}, right{}, up{};
-};
-[[nodiscard]] CameraAxes camera_axes(const CameraDef& camera);
+// Axes (camera_axes) and framing distances come from the renderer's public functions
+// (supermodal/render.h), so the view and the drawing agree by construction.
 /// target + distance · back [m]; the camera's target must be set.
 [[nodiscard]] Vec3 camera_eye(const CameraDef& camera);
 

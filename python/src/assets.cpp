@@ -13,13 +13,7 @@ namespace
 
 py::dict fit(const py::object& points_arg, const py::kwargs& kwargs)
 {
-    py::array_t<double, py::array::c_style | py::array::forcecast> points;
-    try {
-        points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points_arg);
-    } catch (const py::error_already_set&) {
-    }
-    if (!points || points.ndim() != 2 || points.shape(1) != 3)
-        raise_type("points", "expected an (n, 3) array of numbers");
+    const std::vector<sm::Vec3> data = to_points(points_arg, "points");
     Kwargs kw("fit", kwargs);
     sm::FitDef def = sm::default_fit_def();
     def.taper = kw.flag("taper", def.taper);
@@ -30,13 +24,6 @@ py::dict fit(const py::object& points_arg, const py::kwargs& kwargs)
     def.max_points = kw.integer("max_points", def.max_points);
     def.acceptable_rms_relative = kw.number("acceptable_rms_relative", def.acceptable_rms_relative);
     kw.finish();
-    std::vector<sm::Vec3> data(static_cast<size_t>(points.shape(0)));
-    const auto p = points.unchecked<2>();
-    for (py::ssize_t i = 0; i < points.shape(0); ++i) {
-        data[static_cast<size_t>(i)] = {p(i, 0), p(i, 1), p(i, 2)};
-        if (!sm::is_finite(data[static_cast<size_t>(i)]))
-            raise_argument("points", "row " + std::to_string(i) + " is not finite");
-    }
     sm::Result<sm::FitResult> r = [&] {
         py::gil_scoped_release release;
         return sm::fit_superquadric(data, def);

@@ -255,7 +255,7 @@ TEST(EditorCameraInput, KeysOrbitZoomPanAndFrame)
     const sm::Vec3 t = *ed::editor_camera(s, ui).target;
     ok(s, ui, R"({"action": "key", "key": "w"}, {"action": "key", "key": "d"})");
     const sm::CameraDef panned = ed::editor_camera(s, ui);
-    const ed::CameraAxes axes = ed::camera_axes(panned);
+    const sm::CameraAxes axes = sm::camera_axes(panned);
     EXPECT_GT(sm::dot(*panned.target - t, axes.up), 0.0);    // W: the view moved up
     EXPECT_GT(sm::dot(*panned.target - t, axes.right), 0.0); // D: and right
     // Zoomed in 6 notches the scene no longer fits: the framing check fails (status 1) ...

@@ -8,6 +8,7 @@
 
 #include "supermodal/api.h"
 #include "supermodal/entity.h"
+#include "supermodal/geometry.h"
 #include "supermodal/math.h"
 #include "supermodal/result.h"
 #include "supermodal/scene.h"
@@ -17,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,18 @@ struct PixelRect {
     int x = 0, y = 0;
     int width = 0, height = 0; ///< 0 × 0: the whole image.
 };
+
+/// Unit axes of an orbit camera (yaw, pitch; the pitch held within [−89°, 89°]), world frame: `back`
+/// points from the target to the eye, `right` and `up` are the screen's.
+struct CameraAxes {
+    Vec3 back{}, right{}, up{};
+};
+[[nodiscard]] SM_API CameraAxes camera_axes(const CameraDef& camera);
+
+/// The distance [m] from `target` at which every corner of every box lies inside the view of
+/// `camera`'s yaw, pitch and vertical fov (aspect = width / height), with no margin; at least 1 mm.
+[[nodiscard]] SM_API double framing_distance(const CameraDef& camera, const Vec3& target,
+                                             std::span<const Aabb> boxes, double aspect);
 
 /// The camera a frame uses: `camera` with an absent target or a zero distance filled in so that every
 /// non-plane body's world box fits in the view (a margin of 10%). Yaw, pitch and fov are kept.

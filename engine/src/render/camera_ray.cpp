@@ -26,7 +26,7 @@ CameraRay camera_ray(const World& world, const CameraDef& camera_in, int width, 
 {
     const double aspect = aspect_of(width, height);
     const CameraDef camera = frame_bodies(world, camera_in, aspect);
-    const render::OrbitAxes axes = render::orbit_axes(camera);
+    const CameraAxes axes = camera_axes(camera);
     const Vec3 target = camera.target.value_or(Vec3{});
     const Vec3 eye = target + std::max(camera.distance, 1e-3) * axes.back;
     // Normalised device coordinates of the pixel, then the view-space direction at unit depth.

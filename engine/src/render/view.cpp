@@ -23,6 +23,36 @@ constexpr double k_frame_margin = 1.1;
 
 } // namespace
 
+CameraAxes camera_axes(const CameraDef& camera)
+{
+    const double yaw = camera.yaw_deg * k_deg, pitch = std::clamp(camera.pitch_deg, -89.0, 89.0) * k_deg;
+    CameraAxes a;
+    a.back = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
+    a.right = normalized(cross(-a.back, Vec3{0, 1, 0}));
+    a.up = cross(a.right, -a.back);
+    return a;
+}
+
+double framing_distance(const CameraDef& camera, const Vec3& target, std::span<const Aabb> boxes,
+                        double aspect)
+{
+    // A corner at offset r from the target, seen from distance d, sits at depth d − r·back and needs
+    // |r·right| ≤ depth·tan(half_h) and |r·up| ≤ depth·tan(half_v).
+    const CameraAxes axes = camera_axes(camera);
+    const double tan_v = std::tan(0.5 * std::clamp(camera.fov_deg, 1.0, 150.0) * k_deg);
+    const double tan_h = tan_v * std::clamp(aspect, 0.1, 10.0);
+    double d = 0.0;
+    for (const Aabb& box : boxes)
+        for (int k = 0; k < 8; ++k) {
+            const Vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                              (k & 4) ? box.max.z : box.min.z};
+            const Vec3 r = corner - target;
+            d = std::max(d, dot(r, axes.back) + std::max(std::abs(dot(r, axes.right)) / tan_h,
+                                                         std::abs(dot(r, axes.up)) / tan_v));
+        }
+    return std::max(d, 1e-3);
+}
+
 CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect)
 {
     CameraDef out = camera;
@@ -51,22 +81,7 @@ CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspec
     if (!out.target)
         out.target = 0.5 * (lo + hi);
     if (!(out.distance > 0.0)) {
-        // Every box corner inside the view's rectangle: a corner at offset r from the target, seen
-        // from distance d, sits at depth d − r·back and needs |r·right| ≤ depth·tan(half_h) and
-        // |r·up| ≤ depth·tan(half_v).
-        const render::OrbitAxes axes = render::orbit_axes(camera);
-        const double tan_v = std::tan(0.5 * std::clamp(camera.fov_deg, 1.0, 150.0) * k_deg);
-        const double tan_h = tan_v * std::clamp(aspect, 0.1, 10.0);
-        double d = 0.0;
-        for (const Aabb& box : boxes)
-            for (int k = 0; k < 8; ++k) {
-                const Vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
-                                  (k & 4) ? box.max.z : box.min.z};
-                const Vec3 r = corner - *out.target;
-                d = std::max(d, dot(r, axes.back) + std::max(std::abs(dot(r, axes.right)) / tan_h,
-                                                             std::abs(dot(r, axes.up)) / tan_v));
-            }
-        out.distance = k_frame_margin * std::max(d, 1e-3);
+        out.distance = k_frame_margin * framing_distance(camera, *out.target, boxes, aspect);
     }
     return out;
 }
@@ -88,22 +103,12 @@ Mat4 model_matrix(const Vec3& p, const Quat& q)
     return m;
 }
 
-OrbitAxes orbit_axes(const CameraDef& camera)
-{
-    const double yaw = camera.yaw_deg * k_deg, pitch = std::clamp(camera.pitch_deg, -89.0, 89.0) * k_deg;
-    OrbitAxes a;
-    a.back = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
-    a.right = normalized(cross(-a.back, Vec3{0, 1, 0}));
-    a.up = cross(a.right, -a.back);
-    return a;
-}
-
 View make_view(const CameraDef& camera, double aspect, double scene_radius)
 {
     View v;
     v.target = camera.target.value_or(Vec3{});
     v.distance = std::max(camera.distance, 1e-3);
-    const OrbitAxes axes = orbit_axes(camera);
+    const CameraAxes axes = camera_axes(camera);
     v.eye = v.target + v.distance * axes.back;
     // Right-handed look-at: f forward, s right, u up.
     const Vec3 f = -axes.back;

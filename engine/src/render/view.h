@@ -20,12 +20,6 @@ struct View {
     Mat4 view_proj{};
 };
 
-/// Unit axes of an orbit camera, world frame: `back` points from the target to the eye.
-struct OrbitAxes {
-    Vec3 back{}, right{}, up{};
-};
-[[nodiscard]] OrbitAxes orbit_axes(const CameraDef& camera);
-
 /// world_from_shape as a GL matrix: rotation then translation.
 [[nodiscard]] Mat4 model_matrix(const Vec3& position, const Quat& orientation);
 /// View of an orbit camera whose target and distance are set; aspect = width / height.
