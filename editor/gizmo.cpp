@@ -123,7 +123,10 @@ std::vector<GizmoHandle> gizmo_handles(const EditorSession& session, EditorUi& u
     if (e.is_null())
         return out;
     const World& world = session.world();
-    const Vec3 origin = body_position(world, e);
+    Vec3 origin = body_position(world, e);
+    // While an arrow is held the gizmo shows where the release will put the body.
+    if (ui.gizmo_drag && ui.gizmo_drag->mode == GizmoMode::Move)
+        origin = ui.gizmo_drag->origin + ui.gizmo_drag->pending.translate;
     const Quat q = body_orientation(world, e);
     const double length = world_length(session, ui, origin);
     if (!(length > 0.0))
@@ -278,6 +281,14 @@ void draw_gizmo(EditorUi& ui)
                                     ImVec2(tip.x - uy * head * 0.45f, tip.y + ux * head * 0.45f),
                                     ImVec2(tip.x + uy * head * 0.45f, tip.y - ux * head * 0.45f), c);
         }
+    }
+    if (drag && drag->mode == GizmoMode::Move) { // from where the body is to where it will go
+        const auto from = screen_pixel(session, ui, drag->origin);
+        const auto to = screen_pixel(session, ui, drag->origin + drag->pending.translate);
+        if (from && to)
+            list->AddLine(ImVec2(static_cast<float>((*from)[0]), static_cast<float>((*from)[1])),
+                          ImVec2(static_cast<float>((*to)[0]), static_cast<float>((*to)[1])),
+                          IM_COL32(255, 220, 40, 255), 1.5f * ui.scale());
     }
     if (drag) {
         // The value the release will apply, next to the pointer.

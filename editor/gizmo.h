@@ -53,7 +53,8 @@ struct GizmoDrag {
     TransformDef pending; ///< What the release applies (snapped when the gizmo snaps).
 };
 
-/// The handles of the selected body's gizmo now; empty when it is off, nothing is selected, or the
+/// The handles of the selected body's gizmo now (while an arrow is held, at the pose the release gives);
+/// empty when it is off, nothing is selected, or the
 /// selection is a plane.
 [[nodiscard]] std::vector<GizmoHandle> gizmo_handles(const EditorSession& session, EditorUi& ui);
 /// The handle nearest pixel (x, y) within def.grab_px, as a drag starting there; nothing when none.
