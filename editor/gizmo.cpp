@@ -21,7 +21,8 @@ double segment_distance(const Pixel& p, const Pixel& a, const Pixel& b)
 {
     const double dx = b[0] - a[0], dy = b[1] - a[1];
     const double len2 = dx * dx + dy * dy;
-    const double t = len2 > 0.0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
+    const double t =
+        len2 > 0.0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
     return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
 }
 
@@ -139,7 +140,8 @@ std::vector<GizmoHandle> gizmo_handles(const EditorSession& session, EditorUi& u
             const auto [a, b] = ring_basis(axis);
             for (int k = 0; k <= k_ring_points; ++k) {
                 const double phi = 2.0 * M_PI * k / k_ring_points;
-                if (auto p = screen_pixel(session, ui, origin + length * (std::cos(phi) * a + std::sin(phi) * b)))
+                if (auto p =
+                        screen_pixel(session, ui, origin + length * (std::cos(phi) * a + std::sin(phi) * b)))
                     h.line.push_back(*p);
             }
         } else {
@@ -162,7 +164,8 @@ std::optional<GizmoDrag> gizmo_grab(const EditorSession& session, EditorUi& ui, 
         // The part of an arrow near the origin belongs to all three: grab the outer 80%.
         std::vector<Pixel> line = h.line;
         if (ui.gizmo.mode != GizmoMode::Rotate)
-            line.front() = {line[0][0] + 0.2 * (line[1][0] - line[0][0]), line[0][1] + 0.2 * (line[1][1] - line[0][1])};
+            line.front() = {line[0][0] + 0.2 * (line[1][0] - line[0][0]),
+                            line[0][1] + 0.2 * (line[1][1] - line[0][1])};
         const double d = polyline_distance({x, y}, line);
         if (d <= nearest) {
             nearest = d;
@@ -258,7 +261,8 @@ void draw_gizmo(EditorUi& ui)
     ImDrawList* list = ImGui::GetBackgroundDrawList();
     const ScreenRect& v = ui.viewport();
     list->PushClipRect(ImVec2(v.x0, v.y0), ImVec2(v.x1, v.y1));
-    const ImU32 colours[3] = {IM_COL32(230, 60, 60, 255), IM_COL32(80, 200, 80, 255), IM_COL32(70, 120, 240, 255)};
+    const ImU32 colours[3] = {IM_COL32(230, 60, 60, 255), IM_COL32(80, 200, 80, 255),
+                              IM_COL32(70, 120, 240, 255)};
     const float width = 3.0f * ui.scale();
     const float box = 5.0f * ui.scale();
     const std::optional<GizmoDrag>& drag = ui.gizmo_drag;
@@ -300,7 +304,8 @@ void draw_gizmo(EditorUi& ui)
             std::snprintf(text, sizeof text, "%s %+.1f deg", axis, drag->pending.rotate_deg[drag->axis]);
         else
             std::snprintf(text, sizeof text, "%s x%.2f", axis, drag->pending.scale[drag->axis]);
-        const ImVec2 at(static_cast<float>(ui.view_input.x()) + 14.0f, static_cast<float>(ui.view_input.y()) - 6.0f);
+        const ImVec2 at(static_cast<float>(ui.view_input.x()) + 14.0f,
+                        static_cast<float>(ui.view_input.y()) - 6.0f);
         list->AddText(at, IM_COL32(255, 255, 255, 255), text);
     }
     list->PopClipRect();

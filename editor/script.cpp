@@ -588,8 +588,8 @@ std::string pose_text(const ActionContext& c, const std::string& name)
     const Vec3 r = body_shape(w, e).radii;
     std::ostringstream out;
     out << std::setprecision(17) << "position [" << p.x << ", " << p.y << ", " << p.z << "] orientation ["
-        << q.w << ", " << q.x << ", " << q.y << ", " << q.z << "] radii [" << r.x << ", " << r.y << ", " << r.z
-        << "]";
+        << q.w << ", " << q.x << ", " << q.y << ", " << q.z << "] radii [" << r.x << ", " << r.y << ", "
+        << r.z << "]";
     return out.str();
 }
 
@@ -703,7 +703,8 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"drag", {{"ray", "to", "steps", "x0", "y0", "x1", "y1"}, run_drag}},
     {"push", {{"ray", "force", "steps", "x", "y", "depth"}, run_push}},
     {"windows", {{"show"}, run_windows}},
-    {"mouse", {{"x", "y", "body", "gizmo", "button", "down", "mods", "wheel", "frames", "expect"}, run_mouse}},
+    {"mouse",
+     {{"x", "y", "body", "gizmo", "button", "down", "mods", "wheel", "frames", "expect"}, run_mouse}},
     {"transform", {{"body", "translate", "rotate_deg", "scale", "snap"}, run_transform}},
     {"pose", {{"body"}, run_pose}},
     {"gizmo", {{"mode", "snap", "move_step", "rotate_step_deg", "scale_step"}, run_gizmo}},

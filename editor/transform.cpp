@@ -3,7 +3,6 @@
 // It is made of set() edits of the body's position, orientation and radii, joined in the history, so
 // undo, redo, refusals and the world's rebuild behave exactly as for any other edit.
 #include "session.h"
-
 #include "supermodal/body.h"
 
 #include <cmath>
@@ -79,8 +78,8 @@ Status EditorSession::transform(std::string_view body, const TransformDef& def, 
         return Error{"", "translate", "expected finite numbers"};
     for (int i = 0; i < 3; ++i)
         if (!(t.scale[i] > 0.0 && std::isfinite(t.scale[i])))
-            return Error{"", "scale/" + std::to_string(i), "expected a factor > 0, found " +
-                                                               std::to_string(t.scale[i])};
+            return Error{"", "scale/" + std::to_string(i),
+                         "expected a factor > 0, found " + std::to_string(t.scale[i])};
 
     // The new pose from the one in the world now, written in the parent's frame for a part.
     const Vec3 position = body_position(*m_world, e) + t.translate;

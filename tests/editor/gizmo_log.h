@@ -22,8 +22,8 @@ inline std::vector<LoggedPose> logged_poses(const std::string& log)
 {
     std::vector<LoggedPose> out;
     const std::string n = R"((\S+))";
-    const std::regex line("pose \\S+: position \\[" + n + ", " + n + ", " + n + "\\] orientation \\[" + n + ", " +
-                          n + ", " + n + ", " + n + "\\] radii \\[" + n + ", " + n + ", " + n + "\\]");
+    const std::regex line("pose \\S+: position \\[" + n + ", " + n + ", " + n + "\\] orientation \\[" + n +
+                          ", " + n + ", " + n + ", " + n + "\\] radii \\[" + n + ", " + n + ", " + n + "\\]");
     for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator(); ++it) {
         LoggedPose p;
         for (int i = 0; i < 3; ++i) {

@@ -69,9 +69,9 @@ TEST(EditorGizmo, ModeKeysAndButtonsSwitchTheGizmoAndAPressOffTheHandlesStillPic
     ui.frame();
     EXPECT_TRUE(ed::gizmo_handles(s, ui).empty()); // off until asked for
     const std::pair<ed::EditorKey, ed::GizmoMode> keys[] = {{ed::EditorKey::G, ed::GizmoMode::Move},
-                                                           {ed::EditorKey::R, ed::GizmoMode::Rotate},
-                                                           {ed::EditorKey::E, ed::GizmoMode::Scale},
-                                                           {ed::EditorKey::Q, ed::GizmoMode::Off}};
+                                                            {ed::EditorKey::R, ed::GizmoMode::Rotate},
+                                                            {ed::EditorKey::E, ed::GizmoMode::Scale},
+                                                            {ed::EditorKey::Q, ed::GizmoMode::Off}};
     for (const auto& [key, mode] : keys) {
         ui.on_key(key, true);
         EXPECT_EQ(ui.gizmo.mode, mode);
@@ -90,7 +90,8 @@ TEST(EditorGizmo, ModeKeysAndButtonsSwitchTheGizmoAndAPressOffTheHandlesStillPic
     const auto grabbed = ed::gizmo_grab(s, ui, (*handle)[0], (*handle)[1]);
     ASSERT_TRUE(grabbed);
     EXPECT_EQ(grabbed->axis, 1);
-    const auto head = ed::screen_pixel(s, ui, supermodal::body_position(s.world(), supermodal::find_body(s.world(), "dummy_head")));
+    const auto head = ed::screen_pixel(
+        s, ui, supermodal::body_position(s.world(), supermodal::find_body(s.world(), "dummy_head")));
     ASSERT_TRUE(head);
     EXPECT_FALSE(ed::gizmo_grab(s, ui, (*head)[0], (*head)[1]));
     ui.on_cursor((*head)[0], (*head)[1]);
