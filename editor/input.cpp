@@ -19,7 +19,7 @@ namespace
 constexpr double k_mould_depth = 0.005;
 constexpr int k_mould_steps = 200;
 
-constexpr std::array<std::pair<const char*, EditorKey>, 21> k_key_names = {{
+constexpr std::array<std::pair<const char*, EditorKey>, 26> k_key_names = {{
     {"tab", EditorKey::Tab},
     {"space", EditorKey::Space},
     {"escape", EditorKey::Escape},
@@ -41,6 +41,11 @@ constexpr std::array<std::pair<const char*, EditorKey>, 21> k_key_names = {{
     {"f1", EditorKey::F1},
     {"z", EditorKey::Z},
     {"y", EditorKey::Y},
+    {"g", EditorKey::G},
+    {"r", EditorKey::R},
+    {"e", EditorKey::E},
+    {"q", EditorKey::Q},
+    {"n", EditorKey::N},
 }};
 
 constexpr Shortcut k_shortcuts[] = {
@@ -59,6 +64,10 @@ constexpr Shortcut k_shortcuts[] = {
     {"Escape", "lets go of a dragged body"},
     {"Ctrl + Z", "undoes the last edit"},
     {"Ctrl + Shift + Z, Ctrl + Y", "redoes it"},
+    {"G / R / E", "gizmo: move / rotate / scale the selected body"},
+    {"Q", "hides the gizmo (the left button pulls bodies again)"},
+    {"Left drag on a gizmo handle", "moves along, turns about or scales one axis"},
+    {"N", "snapping on or off (0.05 m, 15 degrees, 0.1 scale)"},
     {"H, F1", "shows or hides this list"},
 };
 
@@ -201,7 +210,21 @@ void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t mods)
         else
             session.play();
         break;
+    case EditorKey::G:
+    case EditorKey::R:
+    case EditorKey::E:
+    case EditorKey::Q:
+        ui.gizmo.mode = k == EditorKey::G   ? GizmoMode::Move
+                        : k == EditorKey::R ? GizmoMode::Rotate
+                        : k == EditorKey::E ? GizmoMode::Scale
+                                            : GizmoMode::Off;
+        ui.gizmo_drag.reset();
+        break;
+    case EditorKey::N:
+        ui.gizmo.snap = !ui.gizmo.snap;
+        break;
     case EditorKey::Escape:
+        ui.gizmo_drag.reset(); // a gizmo drag is dropped: nothing applied
         if (m_dragging) {
             session.drag_end();
             m_dragging = false;
@@ -278,6 +301,14 @@ void ViewInput::act(EditorSession& session, EditorUi& ui, bool imgui_wants_mouse
     Result<Ray> ray = screen_ray(session, ui, m_x, m_y);
     if (!ray)
         return;
+    if (ui.gizmo_drag) {
+        gizmo_follow(session, ui, *ui.gizmo_drag, m_x, m_y);
+        if (!m_left) { // released: the previewed transform becomes one undoable edit
+            const GizmoDrag drag = *std::exchange(ui.gizmo_drag, std::nullopt);
+            ui.report(session.transform(drag.body, drag.pending, ui.gizmo.steps));
+        }
+        return;
+    }
     if (m_dragging) {
         if (!m_left) {
             session.drag_end();
@@ -303,6 +334,11 @@ void ViewInput::act(EditorSession& session, EditorUi& ui, bool imgui_wants_mouse
         camera_gesture(session, ui);
         return;
     }
+    if (left_pressed && m_left && !alt_left)
+        if (std::optional<GizmoDrag> grabbed = gizmo_grab(session, ui, m_x, m_y)) {
+            ui.gizmo_drag = std::move(grabbed);
+            return;
+        }
     if (m_left && !alt_left) {
         if (const std::optional<PickHit> hit = session.pick(*ray)) {
             ui.select_body(hit->name);

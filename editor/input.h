@@ -41,6 +41,11 @@ enum class EditorKey : uint8_t {
     F1,    ///< As H.
     Z,     ///< With Ctrl: undoes the last edit; with Ctrl + Shift: redoes it.
     Y,     ///< With Ctrl: redoes.
+    G,     ///< The gizmo moves the selected body.
+    R,     ///< The gizmo rotates it.
+    E,     ///< The gizmo scales it.
+    Q,     ///< No gizmo.
+    N,     ///< Snapping on or off.
 };
 /// "tab", "space", ... (the enum's names in lower case); nothing for an unknown name.
 [[nodiscard]] std::optional<EditorKey> key_from_name(const std::string& name);

@@ -5,6 +5,7 @@
 #include "session.h"
 #include "supermodal/hierarchy.h"
 
+#include <algorithm>
 #include <charconv>
 #include <vector>
 
@@ -105,6 +106,20 @@ std::optional<size_t> find_named(const std::vector<Item>& items, const std::stri
     return std::nullopt;
 }
 
+/// Indices of the bodies whose position or orientation differs between two written scenes.
+std::vector<size_t> moved_bodies(const Json& before, const Json& after)
+{
+    std::vector<size_t> out;
+    const Json& a = before["bodies"];
+    const Json& b = after["bodies"];
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        if (a[i].value("name", "") == b[i].value("name", "") &&
+            (a[i].value("position", Json()) != b[i].value("position", Json()) ||
+             a[i].value("orientation", Json()) != b[i].value("orientation", Json())))
+            out.push_back(i);
+    return out;
+}
+
 } // namespace
 
 Result<std::string> resolve_scene_path(const Scene& scene, std::string_view path)
@@ -163,8 +178,10 @@ Status EditorSession::set(std::string_view path, const Json& value)
     // Recorded after it applied: a refused value leaves no history.
     m_history.resize(m_history_position);
     m_history.push_back({std::string(path), *resolved, std::move(before), value});
-    if (m_history.size() > k_max_history)
+    if (m_history.size() > k_max_history) {
         m_history.erase(m_history.begin());
+        m_history.front().joined = false; // the rest of a cut-off transform stands alone
+    }
     m_history_position = m_history.size();
     return {};
 }
@@ -173,22 +190,29 @@ Status EditorSession::undo()
 {
     if (m_history_position == 0)
         return Error{"", "", "nothing to undo"};
-    const SceneEdit& e = m_history[m_history_position - 1];
-    if (Status status = apply_edit(e.path, e.resolved, e.before); !status)
-        return status;
-    --m_history_position;
-    return {};
+    // Joined edits (one transform) go back together, the last first.
+    for (;;) {
+        const SceneEdit& e = m_history[m_history_position - 1];
+        if (Status status = apply_edit(e.path, e.resolved, e.before); !status)
+            return status;
+        --m_history_position;
+        if (!e.joined || m_history_position == 0)
+            return {};
+    }
 }
 
 Status EditorSession::redo()
 {
     if (m_history_position == m_history.size())
         return Error{"", "", "nothing to redo"};
-    const SceneEdit& e = m_history[m_history_position];
-    if (Status status = apply_edit(e.path, e.resolved, e.after); !status)
-        return status;
-    ++m_history_position;
-    return {};
+    for (;;) {
+        const SceneEdit& e = m_history[m_history_position];
+        if (Status status = apply_edit(e.path, e.resolved, e.after); !status)
+            return status;
+        ++m_history_position;
+        if (m_history_position == m_history.size() || !m_history[m_history_position].joined)
+            return {};
+    }
 }
 
 Status EditorSession::apply_edit(const std::string& path, const std::string& resolved,
@@ -251,7 +275,7 @@ Status EditorSession::apply_edit(const std::string& path, const std::string& res
         }
     }
     if (!live)
-        if (Status status = rebuild_keeping_state(*edited); !status)
+        if (Status status = rebuild_keeping_state(*edited, moved_bodies(*before, *after)); !status)
             return status;
     m_scene = std::move(*edited);
     m_last_effect = live ? SetEffect::Live : SetEffect::Rebuilt;

@@ -295,11 +295,30 @@ void run_push(const ActionContext& c)
     }
 }
 
-/// The display pixel of a mouse action: "x" and "y", or "body" (where its centre is drawn).
+/// "x", "y" or "z" at `key` as an axis index.
+int axis_of(const ActionContext& c, const char* key)
+{
+    const std::string name = text(c.action, c.where, key);
+    if (name != "x" && name != "y" && name != "z")
+        fail(c.where + "/" + key, R"(expected "x", "y" or "z", found ")" + name + "\"");
+    return name[0] - 'x';
+}
+
+/// The display pixel of a mouse action: "x" and "y", "body" (where its centre is drawn), or "gizmo" (a
+/// handle of the selected body's gizmo: "x", "y" or "z").
 std::array<double, 2> mouse_pixel(const ActionContext& c)
 {
+    if (c.action.contains("gizmo")) {
+        if (c.action.contains("body") || c.action.contains("x"))
+            fail(c.where + "/gizmo", "expected \"gizmo\" alone, without \"x\", \"y\" or \"body\"");
+        const int axis = axis_of(c, "gizmo");
+        const std::optional<std::array<double, 2>> p = gizmo_handle_pixel(c.session, c.ui, axis);
+        if (!p)
+            fail(c.where + "/gizmo", "no gizmo handle is drawn (select a body and a gizmo mode first)");
+        return *p;
+    }
     if (c.action.contains("body") == c.action.contains("x"))
-        fail(c.where, "expected either \"x\", \"y\" or \"body\"");
+        fail(c.where, "expected either \"x\", \"y\", \"body\" or \"gizmo\"");
     if (!c.action.contains("body"))
         return {number(c.action, c.where, "x", NAN), number(c.action, c.where, "y", NAN)};
     const std::string name = text(c.action, c.where, "body");
@@ -547,6 +566,100 @@ void run_animate(const ActionContext& c)
           << " sqrt(kg) m, peak " << a.peak_displacement << " m, one swing per " << a.period << " s";
 }
 
+/// A vector at `key`, or `fallback` when absent; a number gives all three components when `uniform`.
+Vec3 vec3_or(const ActionContext& c, const char* key, const Vec3& fallback, bool uniform = false)
+{
+    if (!c.action.contains(key))
+        return fallback;
+    const Json& v = c.action.at(key);
+    if (uniform && v.is_number()) {
+        const double s = number(c.action, c.where, key, 1.0);
+        return {s, s, s};
+    }
+    return vec3(v, c.where + "/" + key);
+}
+
+std::string pose_text(const ActionContext& c, const std::string& name)
+{
+    const World& w = c.session.world();
+    const Entity e = find_body(w, name);
+    const Vec3 p = body_position(w, e);
+    const Quat q = body_orientation(w, e);
+    const Vec3 r = body_shape(w, e).radii;
+    std::ostringstream out;
+    out << std::setprecision(17) << "position [" << p.x << ", " << p.y << ", " << p.z << "] orientation ["
+        << q.w << ", " << q.x << ", " << q.y << ", " << q.z << "] radii [" << r.x << ", " << r.y << ", "
+        << r.z << "]";
+    return out.str();
+}
+
+/// Moves, turns and scales a body as one undoable edit (what a gizmo drag applies).
+void run_transform(const ActionContext& c)
+{
+    const std::string name = body_or_selected(c);
+    TransformDef def;
+    def.translate = vec3_or(c, "translate", def.translate);
+    def.rotate_deg = vec3_or(c, "rotate_deg", def.rotate_deg);
+    def.scale = vec3_or(c, "scale", def.scale, /*uniform=*/true);
+    for (int i = 0; i < 3; ++i)
+        if (!(def.scale[i] > 0.0))
+            fail(c.where + "/scale" + (c.action.at("scale").is_array() ? "/" + std::to_string(i) : ""),
+                 "expected a factor > 0, found " + std::to_string(def.scale[i]));
+    if (c.action.contains("snap")) {
+        if (!c.action["snap"].is_boolean())
+            fail(c.where + "/snap", "expected true or false, found " + kind_of(c.action["snap"]));
+        def.snap = c.action["snap"].get<bool>();
+    }
+    // The session names the key at fault ("body", "scale", "translate"): the message points at it.
+    if (const Status status = c.session.transform(name, def, c.ui.gizmo.steps); !status) {
+        const std::string& key = status.error().where;
+        fail(c.action.contains(key) ? c.where + "/" + key : c.where, status.error().what);
+    }
+    c.log << " " << name << ": " << pose_text(c, name);
+}
+
+/// Logs a body's pose and radii to 17 digits (read back to the same doubles).
+void run_pose(const ActionContext& c)
+{
+    const std::string name = body_or_selected(c);
+    c.log << " " << name << ": " << pose_text(c, name);
+}
+
+/// The gizmo's mode, snapping and steps, as the Body window sets them.
+void run_gizmo(const ActionContext& c)
+{
+    GizmoDef g = c.ui.gizmo;
+    if (c.action.contains("mode")) {
+        const std::string mode = text(c.action, c.where, "mode");
+        const GizmoMode modes[] = {GizmoMode::Off, GizmoMode::Move, GizmoMode::Rotate, GizmoMode::Scale};
+        bool known = false;
+        for (GizmoMode m : modes)
+            if (mode == gizmo_mode_name(m)) {
+                g.mode = m;
+                known = true;
+            }
+        if (!known)
+            fail(c.where + "/mode", R"(expected "off", "move", "rotate" or "scale", found ")" + mode + "\"");
+    }
+    if (c.action.contains("snap")) {
+        if (!c.action["snap"].is_boolean())
+            fail(c.where + "/snap", "expected true or false, found " + kind_of(c.action["snap"]));
+        g.snap = c.action["snap"].get<bool>();
+    }
+    const std::pair<const char*, double*> steps[] = {{"move_step", &g.steps.move_step},
+                                                     {"rotate_step_deg", &g.steps.rotate_step_deg},
+                                                     {"scale_step", &g.steps.scale_step}};
+    for (const auto& [key, value] : steps) {
+        *value = number(c.action, c.where, key, *value);
+        if (!(*value > 0.0))
+            fail(c.where + "/" + key, "expected a step > 0, found " + kind_of(c.action[key]));
+    }
+    c.ui.gizmo = g;
+    c.ui.gizmo_drag.reset();
+    c.ui.host_frame(0.0); // drawn, so a "mouse" action can find its handles
+    c.log << " " << gizmo_mode_name(g.mode) << (g.snap ? ", snapping" : ", free");
+}
+
 void run_windows(const ActionContext& c)
 {
     const Json& show = required(c.action, c.where, "show");
@@ -590,7 +703,11 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"drag", {{"ray", "to", "steps", "x0", "y0", "x1", "y1"}, run_drag}},
     {"push", {{"ray", "force", "steps", "x", "y", "depth"}, run_push}},
     {"windows", {{"show"}, run_windows}},
-    {"mouse", {{"x", "y", "body", "button", "down", "mods", "wheel", "frames", "expect"}, run_mouse}},
+    {"mouse",
+     {{"x", "y", "body", "gizmo", "button", "down", "mods", "wheel", "frames", "expect"}, run_mouse}},
+    {"transform", {{"body", "translate", "rotate_deg", "scale", "snap"}, run_transform}},
+    {"pose", {{"body"}, run_pose}},
+    {"gizmo", {{"mode", "snap", "move_step", "rotate_step_deg", "scale_step"}, run_gizmo}},
     {"key", {{"key", "mods"}, run_key}},
     {"camera", {{"yaw_deg", "pitch_deg", "distance", "tolerance", "framed"}, run_camera}},
     {"viewport", {{"min_fraction"}, run_viewport}},

@@ -196,13 +196,19 @@ Status EditorSession::save(const std::string& path, bool current_state) const
     return save_scene(out, path);
 }
 
-Status EditorSession::rebuild_keeping_state(const Scene& edited)
+Status EditorSession::rebuild_keeping_state(const Scene& edited, const std::vector<size_t>& moved)
 {
     end_mode_animation();
     Scene running = edited;
     // Bodies keep where they are and how they move; a renamed body starts from its scene pose.
     if (m_world)
         (void)refresh_scene_from_world(running, *m_world, /*include_shapes=*/false);
+    // A moved body goes where the edit put it (in its parent's frame for a part); its own parts keep
+    // their poses relative to it, so they come along, and its joints are made at the new pose.
+    for (size_t i : moved) {
+        running.bodies[i].def.position = edited.bodies[i].def.position;
+        running.bodies[i].def.orientation = edited.bodies[i].def.orientation;
+    }
     share_bases(running);
     Result<World> world = build_world(running);
     if (!world)

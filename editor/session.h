@@ -82,7 +82,26 @@ struct SceneEdit {
     std::string resolved;       ///< With indices: replayed after a rename too.
     std::optional<Json> before; ///< The value there before; nothing when set() added the key.
     Json after;                 ///< The value set.
+    bool joined = false;        ///< Undone and redone together with the edit before it (one transform).
 };
+
+/// Steps a snapped transform rounds to.
+struct SnapDef {
+    double move_step = 0.05;     ///< Translation, per world axis [m].
+    double rotate_step_deg = 15; ///< Rotation, per world axis [°].
+    double scale_step = 0.1;     ///< Scale factor, per shape axis [-].
+};
+
+/// One move, turn and resize of a body (the gizmo's, or a script's "transform").
+struct TransformDef {
+    Vec3 translate{};          ///< Added to the body's position, world axes [m].
+    Vec3 rotate_deg{};         ///< Turns about the world X, then Y, then Z axis through its origin [°].
+    Vec3 scale{1.0, 1.0, 1.0}; ///< Multiplies the radii, shape axes [-], each > 0.
+    bool snap = false;         ///< Rounds each component of the three to SnapDef's steps first.
+};
+
+/// `def` with its components rounded to the steps when def.snap (a snapped scale is at least one step).
+[[nodiscard]] TransformDef snapped(const TransformDef& def, const SnapDef& steps);
 
 class EditorSession
 {
@@ -128,6 +147,14 @@ class EditorSession
     Status undo();
     /// Applies again the last undone edit; fails when there is none. A new set() drops the undone ones.
     Status redo();
+    /// Moves, turns and resizes a body as one edit: its scene position, orientation (in its parent's
+    /// frame for a part) and radii are set() together, so one undo() takes all of them back. The body's
+    /// assembly follows in the world (its children keep their poses relative to it); a resize keeps the
+    /// direction anchors of its constraints on its surface (set_body_shape). Starts from the body's pose
+    /// in the world now. Fails, changing nothing, for an unknown body, a plane, a step or value not finite,
+    /// or a scale not > 0.
+    Status transform(std::string_view body, const TransformDef& def, const SnapDef& steps = {});
+
     /// Every edit since the load, in order; the first history_position() of them are applied.
     [[nodiscard]] const std::vector<SceneEdit>& history() const { return m_history; }
     [[nodiscard]] size_t history_position() const { return m_history_position; }
@@ -195,7 +222,9 @@ class EditorSession
     Status install(Scene scene);
     /// set() after the path is resolved; nothing for `value` removes the key.
     Status apply_edit(const std::string& path, const std::string& resolved, const std::optional<Json>& value);
-    Status rebuild_keeping_state(const Scene& edited);
+    /// Rebuilds the world from `edited` at the current poses and velocities, except that the bodies in
+    /// `moved` (indices whose scene pose the edit changed) take their edited pose, their parts along.
+    Status rebuild_keeping_state(const Scene& edited, const std::vector<size_t>& moved = {});
     void apply_loads();
     void attach_step_listener();
     void before_step();

@@ -5,6 +5,7 @@
 // mouse input, pressing widgets by their label.
 #pragma once
 
+#include "gizmo.h"
 #include "input.h"
 #include "session.h"
 
@@ -162,6 +163,9 @@ class EditorUi
     uint64_t view_loads = 0;      ///< The session's loads() view_camera was framed for.
     uint64_t view_generation = 0; ///< The session generation view_camera was framed for.
     double view_aspect = 0.0;     ///< The 3-D view's width / height view_camera was framed for.
+    /// The transform gizmo over the selected body (mode, snapping) and the handle held, if any.
+    GizmoDef gizmo;
+    std::optional<GizmoDrag> gizmo_drag;
     /// The Speed / accuracy window's values in the last frame.
     SpeedAccuracyReadout speed_accuracy;
     /// The Body window's Modes section in the last frame.

@@ -66,6 +66,37 @@ void draw_material(EditorUi& ui, const std::string& base, const std::vector<std:
     ui.track("Material##body");
 }
 
+/// The gizmo's mode and snapping (keys G, R, E, Q and N do the same).
+void draw_gizmo_controls(EditorUi& ui)
+{
+    GizmoDef& g = ui.gizmo;
+    const GizmoMode modes[] = {GizmoMode::Off, GizmoMode::Move, GizmoMode::Rotate, GizmoMode::Scale};
+    const char* labels[] = {"Off##gizmo", "Move##gizmo", "Rotate##gizmo", "Scale##gizmo"};
+    for (int i = 0; i < 4; ++i) {
+        if (i > 0)
+            ImGui::SameLine();
+        if (ImGui::RadioButton(labels[i], g.mode == modes[i])) {
+            g.mode = modes[i];
+            ui.gizmo_drag.reset();
+        }
+        ui.track(labels[i]);
+    }
+    ImGui::Checkbox("Snap##gizmo", &g.snap);
+    ui.track("Snap##gizmo");
+    if (!g.snap)
+        return;
+    // Steps stay > 0: a zero step would snap everything to nothing.
+    double step = g.steps.move_step;
+    if (ImGui::InputDouble("Move step [m]##gizmo", &step, 0.0, 0.0, "%.4g", k_on_enter) && step > 0.0)
+        g.steps.move_step = step;
+    step = g.steps.rotate_step_deg;
+    if (ImGui::InputDouble("Turn step [deg]##gizmo", &step, 0.0, 0.0, "%.4g", k_on_enter) && step > 0.0)
+        g.steps.rotate_step_deg = step;
+    step = g.steps.scale_step;
+    if (ImGui::InputDouble("Scale step##gizmo", &step, 0.0, 0.0, "%.4g", k_on_enter) && step > 0.0)
+        g.steps.scale_step = step;
+}
+
 void draw_dynamics(EditorUi& ui, const std::string& base, const SceneBody& body)
 {
     const bool modal = body.dynamics == DynamicsType::Modal;
@@ -163,6 +194,9 @@ void draw_body_window(EditorUi& ui)
             ImGui::TextUnformatted("Shape");
             draw_shape(ui, base, body.def.shape);
             if (body.def.shape.type != ShapeType::Plane) {
+                ImGui::Separator();
+                ImGui::TextUnformatted("Gizmo");
+                draw_gizmo_controls(ui);
                 ImGui::Separator();
                 ImGui::TextUnformatted("Dynamics");
                 draw_dynamics(ui, base, body);

@@ -159,6 +159,7 @@ void EditorUi::frame(double real_seconds)
         draw_speed_accuracy(*this);
     }
     update_viewport();
+    draw_gizmo(*this);
     help_lines.clear();
     if (show_help)
         draw_help(*this); // over the view, after the view's rectangle is known

@@ -101,6 +101,11 @@ constexpr std::pair<int, EditorKey> k_glfw_keys[] = {
     {GLFW_KEY_F1, EditorKey::F1},
     {GLFW_KEY_Z, EditorKey::Z},
     {GLFW_KEY_Y, EditorKey::Y},
+    {GLFW_KEY_G, EditorKey::G},
+    {GLFW_KEY_R, EditorKey::R},
+    {GLFW_KEY_E, EditorKey::E},
+    {GLFW_KEY_Q, EditorKey::Q},
+    {GLFW_KEY_N, EditorKey::N},
 };
 
 constexpr std::pair<int, MouseButton> k_glfw_buttons[] = {

@@ -4,6 +4,7 @@
 // 3-D view's share of the window is checked, and the camera's logged states are checked against each
 // other.
 #ifdef SM_HAS_RENDER
+#include "gizmo_log.h"
 #include "supermodal/render.h"
 #include "support/run_command.h"
 
@@ -122,6 +123,31 @@ TEST(EditorWindow, AScriptThroughTheWindowMatchesTheGoldenImageAndLeavesTheViewS
     EXPECT_LE(diff->differing_fraction, k_max_fraction)
         << diff->differing_pixels << " pixels differ (max " << diff->max_difference << "); see "
         << shot.string() << " and " << (out / "window_diff.png").string();
+}
+
+TEST(EditorWindow, GizmoDragsThroughTheWindowChangeOneAxisBySnappedStepsAndUndoRestoresThePose)
+{
+    // tests/editor/gizmo_script.json: the seat's X arrow, Y ring and X box dragged by GLFW events.
+    const std::string script = std::string(SM_SOURCE_DIR) + "/tests/editor/gizmo_script.json";
+    // --screenshot closes the window after the script (without it the window stays open for the user).
+    std::filesystem::create_directories(SM_EDITOR_OUT);
+    const std::string shot = std::string(SM_EDITOR_OUT) + "/gizmo_window.png";
+    const sm::test::CommandOutcome o = run_in_xvfb("--script " + script + " --screenshot " + shot);
+    ASSERT_EQ(o.status, 0) << o.output;
+    const std::vector<sm::test::LoggedPose> window = sm::test::logged_poses(o.output);
+    sm::test::check_gizmo_poses(window);
+    // The window's events and the headless ones reach the same pixels of the same camera: the same
+    // edits to the bit.
+    const sm::test::CommandOutcome headless =
+        sm::test::run_command(std::string(SM_EDITOR_EXE) + " --headless --script " + script + " 2>&1");
+    ASSERT_EQ(headless.status, 0) << headless.output;
+    const std::vector<sm::test::LoggedPose> expected = sm::test::logged_poses(headless.output);
+    ASSERT_EQ(window.size(), expected.size());
+    for (size_t i = 0; i < window.size(); ++i) {
+        EXPECT_EQ(window[i].position, expected[i].position) << i;
+        EXPECT_EQ(window[i].orientation, expected[i].orientation) << i;
+        EXPECT_EQ(window[i].radii, expected[i].radii) << i;
+    }
 }
 
 TEST(EditorWindow, AFailedCheckInTheWindowExitsWithStatus1)
