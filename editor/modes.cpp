@@ -133,15 +133,23 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     r.truncated_energy = accuracy.truncated_energy;
     r.truncated_fraction = accuracy.truncated_fraction;
     const BodyPlasticState plastic = body_plastic_state(w, e);
-    if (std::any_of(plastic.offsets.begin(), plastic.offsets.end(), [](double q) { return q != 0.0; })) {
+    const BodyRemould remould = body_remould(w, e);
+    r.rebuilds = remould.rebuilds;
+    r.rebuild_pending_step = remould.pending_step;
+    if (!remould.rest_offsets.empty() ||
+        std::any_of(plastic.offsets.begin(), plastic.offsets.end(), [](double q) { return q != 0.0; })) {
         // Over surface samples about 1/40 of the body apart: lattice nodes outside the material would
         // overstate the dent.
         double extent = 0.0;
         for (int axis = 0; axis < 3; ++axis)
             extent = std::max(extent, basis->cells[axis] * basis->cell_size[axis]);
-        for (const SurfaceSample& p : sample_surface(body_shape(w, e), extent / 40.0, 2000))
-            r.plastic_dent =
-                std::max(r.plastic_dent, length(modal_displacement(*basis, p.point, plastic.offsets)));
+        for (const SurfaceSample& p : sample_surface(body_shape(w, e), extent / 40.0, 2000)) {
+            const LatticeWeights lw = modal_weights(*basis, p.point);
+            Vec3 dent = modal_displacement(*basis, lw, plastic.offsets);
+            if (!remould.rest_offsets.empty()) // the part the rebuilt modes' rest shape took over
+                dent += interpolate_nodal(lw, remould.rest_offsets);
+            r.plastic_dent = std::max(r.plastic_dent, length(dent));
+        }
     }
 
     add_line(r, "%d modes, natural frequency [Hz], amplitude q [sqrt(kg) m]", basis->mode_count);
@@ -150,10 +158,18 @@ ModesReadout modes_readout(const EditorSession& session, const std::string& body
     add_line(r, "modal residual %.3e (0: the modes hold the last loads)", r.residual);
     add_line(r, "truncated energy %.3e J (%.3e of the static response)", r.truncated_energy,
              r.truncated_fraction);
-    if (r.plastic_dent > 0.0)
+    if (r.plastic_dent > 0.0 && r.rebuilds == 0)
         add_line(r,
                  "plastic dent: the surface kept up to %.3g mm; the modes are those of the unmoulded shape",
                  1e3 * r.plastic_dent);
+    else if (r.plastic_dent > 0.0)
+        add_line(r,
+                 "plastic dent: the surface kept up to %.3g mm; the modes are those of the moulded shape "
+                 "(%d rebuild%s)",
+                 1e3 * r.plastic_dent, r.rebuilds, r.rebuilds == 1 ? "" : "s");
+    if (r.rebuild_pending_step != 0)
+        add_line(r, "modes rebuilding for the moulded shape: in use from step %llu",
+                 static_cast<unsigned long long>(r.rebuild_pending_step));
     return r;
 }
 

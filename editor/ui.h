@@ -56,7 +56,10 @@ struct ModesReadout {
     double residual = 0.0;              ///< body_modal_accuracy().residual [-].
     double truncated_energy = 0.0;      ///< body_modal_accuracy().truncated_energy [J].
     double truncated_fraction = 0.0;    ///< body_modal_accuracy().truncated_fraction [-].
-    double plastic_dent = 0.0;          ///< Largest surface displacement of the plastic offsets [m].
+    double plastic_dent = 0.0;          ///< Largest surface displacement of the moulding [m]: the plastic
+                                        ///< offsets plus the rest offsets of rebuilt modes.
+    int rebuilds = 0;                   ///< Times its modes were rebuilt for the moulded shape [-].
+    uint64_t rebuild_pending_step = 0;  ///< Step count at which a rebuild asked for takes over; 0: none.
     int animating = -1;                 ///< The mode being animated (0 = lowest), or −1.
     std::vector<std::string> lines;     ///< The text lines (the panel adds one button per mode).
 };

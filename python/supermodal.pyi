@@ -43,6 +43,7 @@ class Material:
         yield_stress: float = ...,
         hardening: float = 0.0,
         max_plastic_strain: float = ...,
+        remould_threshold: float = 0.02,
     ) -> None: ...
     @property
     def name(self) -> str: ...
@@ -66,6 +67,8 @@ class Material:
     def hardening(self) -> float: ...
     @property
     def max_plastic_strain(self) -> float: ...
+    @property
+    def remould_threshold(self) -> float: ...
 
 class Body:
     @property
@@ -287,6 +290,7 @@ class World:
         hardening: float = 0.0,
         max_plastic_strain: float = ...,
         adaptive_tolerance: float = 0.0,
+        remould_threshold: float = 0.02,
     ) -> Body: ...
     def destroy_body(self, body: Body) -> None: ...
     @property

@@ -28,6 +28,7 @@ constexpr std::initializer_list<std::pair<const char*, const char*>> k_body_fiel
     {"modal/hardening", "hardening"},
     {"modal/max_plastic_strain", "max_plastic_strain"},
     {"modal/adaptive_tolerance", "adaptive_tolerance"},
+    {"modal/remould_threshold", "remould_threshold"},
     {"modal/mode_count", "mode_count"},
 };
 
@@ -52,6 +53,7 @@ sm::MaterialDef make_material(const py::kwargs& kwargs)
     m.yield_stress = kw.number_or_inf("yield_stress", m.yield_stress);
     m.hardening = kw.number("hardening", m.hardening);
     m.max_plastic_strain = kw.number_or_inf("max_plastic_strain", m.max_plastic_strain);
+    m.remould_threshold = kw.number("remould_threshold", m.remould_threshold);
     kw.finish();
     // The scene loader's ranges for a material (docs/scene_format.md).
     check_range(m.density > 0.0, "density", "a density > 0 kg/m^3");
@@ -64,6 +66,7 @@ sm::MaterialDef make_material(const py::kwargs& kwargs)
     check_range(m.yield_stress > 0.0, "yield_stress", "a yield stress > 0 Pa (inf: elastic)");
     check_range(m.hardening >= 0.0, "hardening", "a hardening modulus >= 0 Pa");
     check_range(m.max_plastic_strain > 0.0, "max_plastic_strain", "a plastic strain limit > 0 (inf: none)");
+    check_range(m.remould_threshold >= 0.0, "remould_threshold", "a rest-shape change >= 0 (0: never)");
     return m;
 }
 
@@ -79,6 +82,7 @@ void apply_material(const sm::MaterialDef& m, sm::BodyDef& def)
     def.modal.yield_stress = m.yield_stress;
     def.modal.hardening = m.hardening;
     def.modal.max_plastic_strain = m.max_plastic_strain;
+    def.modal.remould_threshold = m.remould_threshold;
 }
 
 void read_shape(Kwargs& kw, sm::ShapeDef& s)
@@ -124,6 +128,7 @@ void read_modal(Kwargs& kw, sm::ModalBodyDef& m)
     m.hardening = kw.number("hardening", m.hardening);
     m.max_plastic_strain = kw.number_or_inf("max_plastic_strain", m.max_plastic_strain);
     m.adaptive_tolerance = kw.number("adaptive_tolerance", m.adaptive_tolerance);
+    m.remould_threshold = kw.number("remould_threshold", m.remould_threshold);
 }
 
 sm::BodyDef read_body_def(const py::kwargs& kwargs)
@@ -240,7 +245,7 @@ void register_bodies(py::module_& m)
 Keywords (defaults in brackets): name [''], density [1000] kg/m^3 > 0, young [1e9] Pa > 0,
 poisson [0.3] in (-1, 0.5), friction [0.5] >= 0, restitution [0.2] in [0, 1], rolling_resistance [0] m
 >= 0, damping_ratio [0.01] >= 0 (modal), yield_stress [inf] Pa > 0, hardening [0] Pa >= 0,
-max_plastic_strain [inf] > 0. Read-only once made.)")
+max_plastic_strain [inf] > 0, remould_threshold [0.02] >= 0 (0: never). Read-only once made.)")
         .def(py::init(&make_material))
         .def_readonly("name", &sm::MaterialDef::name)
         .def_readonly("density", &sm::MaterialDef::density)
@@ -253,6 +258,7 @@ max_plastic_strain [inf] > 0. Read-only once made.)")
         .def_readonly("yield_stress", &sm::MaterialDef::yield_stress)
         .def_readonly("hardening", &sm::MaterialDef::hardening)
         .def_readonly("max_plastic_strain", &sm::MaterialDef::max_plastic_strain)
+        .def_readonly("remould_threshold", &sm::MaterialDef::remould_threshold)
         .def("__repr__", [](const sm::MaterialDef& d) {
             return "Material(name='" + d.name + "', density=" + std::string(py::str(py::float_(d.density))) +
                    ")";
@@ -384,7 +390,8 @@ rolling_resistance [0] m >= 0; allow_sleep [True].
 modal [False]: deform through the lowest modes; mode_count [12] in [1, 256] (0: all);
 lattice [(0, 0, 0)] cells per axis in [0, 128] (0: from the aspect ratio);
 modal_integrator ['exact'|'central_difference']; damping_ratio [0.01] >= 0; yield_stress [inf] Pa;
-hardening [0] Pa; max_plastic_strain [inf]; adaptive_tolerance [0] m (> 0: adaptive modes).
+hardening [0] Pa; max_plastic_strain [inf]; adaptive_tolerance [0] m (> 0: adaptive modes);
+remould_threshold [0.02] >= 0 (rest-shape change past which the modes are rebuilt; 0: never).
 
 Raises ArgumentError / ArgumentTypeError naming the keyword; the world is then unchanged.)");
     world.def("destroy_body", &destroy_body, py::arg("body"), "Destroys a body; its handles become invalid.");

@@ -6,6 +6,7 @@
 #include "supermodal/modal.h"
 
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <sstream>
 
@@ -257,19 +258,32 @@ TEST(EditorModes, RigidBodyShowsNoModes)
     EXPECT_NE(log.find("ball: rigid, no modes"), std::string::npos) << log;
 }
 
-TEST(EditorModes, MouldedClayListsItsDent)
+TEST(EditorModes, MouldedClayListsItsDentAndRebuiltModes)
 {
     // The clay block of the moulding test, pressed 12 mm from above and let go: the dent it keeps is
-    // listed (the modes stay those of the unmoulded block, and the line says so).
+    // listed, and the modes shown are those rebuilt for the moulded block (the dent is past the default
+    // remould threshold, 2% of the block's 0.2 m).
     ed::EditorSession s;
     ASSERT_TRUE(s.load(std::string(SM_SOURCE_DIR) + "/tests/editor/clay.json"));
     s.step(300);
-    EXPECT_EQ(ed::modes_readout(s, "clay").plastic_dent, 0.0);
+    const ed::ModesReadout unmoulded = ed::modes_readout(s, "clay");
+    EXPECT_EQ(unmoulded.plastic_dent, 0.0);
+    EXPECT_EQ(unmoulded.rebuilds, 0);
     ASSERT_TRUE(s.mould(ed::Ray{{0.0, 0.5, 0.0}, {0, -1, 0}}, 0.012, 300));
     s.step(600);
     const ed::ModesReadout r = ed::modes_readout(s, "clay");
     EXPECT_GT(r.plastic_dent, 0.005); // the moulding test keeps > half of a 10 mm press
     EXPECT_LT(r.plastic_dent, 0.05);
-    EXPECT_NE(r.lines.back().find("plastic dent"), std::string::npos) << r.lines.back();
-    EXPECT_NE(r.lines.back().find("unmoulded shape"), std::string::npos);
+    EXPECT_GE(r.rebuilds, 1);
+    const sm::BodyRemould remould = sm::body_remould(s.world(), sm::find_body(s.world(), "clay"));
+    std::printf("clay: %d rebuilds, dent %.4g m, last rebuild %.3g s (the swap waited %.3g s)\n", r.rebuilds,
+                r.plastic_dent, remould.build_seconds, remould.wait_seconds);
+    // The listed frequencies are the body's current (rebuilt) basis, not the unmoulded block's.
+    const sm::ModalBasis* basis = sm::body_modal_basis(s.world(), sm::find_body(s.world(), "clay"));
+    ASSERT_NE(basis, nullptr);
+    EXPECT_EQ(r.frequencies_hz, basis->frequencies_hz);
+    EXPECT_NE(r.frequencies_hz, unmoulded.frequencies_hz);
+    const std::string& dent_line = r.rebuild_pending_step != 0 ? r.lines[r.lines.size() - 2] : r.lines.back();
+    EXPECT_NE(dent_line.find("plastic dent"), std::string::npos) << dent_line;
+    EXPECT_NE(dent_line.find("of the moulded shape"), std::string::npos) << dent_line;
 }

@@ -170,6 +170,26 @@ TEST(SceneModal, ReadsPlasticityFromTheMaterial)
     EXPECT_TRUE(material_error(R"("yield_stres": 1)", "/materials/clay/yield_stres", "\"yield_stress\""));
 }
 
+TEST(SceneModal, ReadsTheRemouldThresholdFromTheMaterial)
+{
+    const std::string json =
+        R"({"materials": {"clay": {"young": 2e6, "yield_stress": 2e4, "remould_threshold": 0.05}}, "bodies": [
+      {"name": "ball", "material": "clay", "shape": {"type": "superquadric", "radii": [0.1, 0.1, 0.1]},
+       "dynamics": {"type": "modal", "modes": 6}}]})";
+    const sm::Result<sm::Scene> scene = sm::parse_scene(json);
+    ASSERT_TRUE(scene) << scene.error().message();
+    EXPECT_EQ(scene->bodies[0].def.modal.remould_threshold, 0.05);
+    const sm::Result<sm::Scene> plain = sm::parse_scene(R"({"bodies": [{"name": "ball", "shape":
+      {"type": "superquadric", "radii": [0.1, 0.1, 0.1]}, "dynamics": {"type": "modal", "modes": 6}}]})");
+    ASSERT_TRUE(plain) << plain.error().message();
+    EXPECT_EQ(plain->bodies[0].def.modal.remould_threshold, sm::ModalBodyDef{}.remould_threshold);
+    for (const char* bad : {"-0.1", "\"x\"", "null"})
+        EXPECT_TRUE(fails_at(R"({"materials": {"clay": {"remould_threshold": )" + std::string(bad) +
+                                 R"(}}, "bodies": []})",
+                             "/materials/clay/remould_threshold", "expected"))
+            << bad;
+}
+
 TEST(SceneModal, AutoIsAdaptiveModalWithTheScenesBudgetOrRigidWhereItCannotDeform)
 {
     std::string json = board_scene(R"({"type": "auto", "modes": 16})");

@@ -162,6 +162,7 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
         d.num(m.yield_stress, n.yield_stress, w + ".yield_stress");
         d.num(m.hardening, n.hardening, w + ".hardening");
         d.num(m.max_plastic_strain, n.max_plastic_strain, w + ".max_plastic_strain");
+        d.num(m.remould_threshold, n.remould_threshold, w + ".remould_threshold");
     }
     d.check(a.camera.target.has_value() == b.camera.target.has_value(), "camera.target");
     if (a.camera.target && b.camera.target) {
@@ -238,7 +239,8 @@ std::string every_field_scene()
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },
   "materials": {
     "rubber": { "density": 1100, "young": 5e6, "poisson": 0.45, "friction": 0.9, "restitution": 0.7,
-                "rolling_resistance": 0.002, "damping_ratio": 0.05, "yield_stress": 3e5, "hardening": 2e6, "max_plastic_strain": 0.04 },
+                "rolling_resistance": 0.002, "damping_ratio": 0.05, "yield_stress": 3e5, "hardening": 2e6, "max_plastic_strain": 0.04,
+                "remould_threshold": 0.05 },
     "plain": { "density": 0.1 }
   },
   "include": [ { "file": ")" +

@@ -58,6 +58,14 @@ struct ModalBodyDef {
     /// 0: every mode is stepped always. > 0: the body starts rigid and steps only the lowest modes its
     /// loads need for the surface displacement left out to stay under this; mode_count is the most.
     double adaptive_tolerance = 0.0;
+    /// Plastic bodies: the rest-shape change [-] past which the modes are rebuilt for the moulded shape
+    /// (docs/modal.md "Remoulding"): the largest rest offset of a lattice node since the last build,
+    /// over the lattice's largest side. 0: never rebuilt (the modes stay those of the first shape).
+    double remould_threshold = 0.02;
+    /// Steps [-], in [1, 1000], from the step that asks for the rebuild (it builds on a thread of its
+    /// own meanwhile) to the step boundary where the new modes take over; that step waits for the
+    /// build if it is not done, so results do not depend on how long it takes.
+    int remould_delay_steps = 4;
 };
 
 /// How to make a body. Start from default_body_def() and change what differs.

@@ -72,6 +72,12 @@ struct ModalBasisDef {
     int mode_count = 12;     ///< Elastic modes kept, r ∈ [1, k_max_modes], or k_all_modes (every
                              ///< elastic mode; dense; at most k_max_full_dofs); rigid modes never.
     ModalSolver solver = ModalSolver::Auto;
+    /// A moulded rest shape: per node of the lattice the def makes without them (node order of
+    /// ModalBasis::node_positions), how far the rest shape has moved [m], shape frame. The same cells,
+    /// quadrature points and nodes are integrated over their moved places (the material carried along);
+    /// ModalBasis::node_positions then holds the moved nodes, while the lattice box and modal_weights
+    /// stay those of the unmoulded shape (points are named by where they were). Empty: the shape itself.
+    std::vector<Vec3> rest_offsets;
 };
 
 /// The documented starting point: a sphere of 1 m diameter, soft (E = 10 MPa, ν = 0.3, ρ = 1000 kg/m³),
@@ -302,6 +308,21 @@ struct BodyPointTest {
 /// Newton fails (a folded field) the point counts as outside. Rigid bodies: the shape's own test.
 /// (Contact does not use this yet: docs/modal.md "Deformed surfaces".)
 [[nodiscard]] SM_API BodyPointTest body_point_test(const World& world, Entity body, const Vec3& world_point);
+
+/// A plastic body's remoulding (docs/modal.md "Remoulding"); zeros for other bodies.
+struct BodyRemould {
+    double threshold = 0.0;     ///< ModalBodyDef::remould_threshold [-].
+    double rest_change = 0.0;   ///< Largest rest offset of a lattice node since the last build, over the
+                                ///< lattice's largest side [-]: a rebuild is asked for past the threshold.
+    int rebuilds = 0;           ///< Rebuilt bases swapped in [-].
+    uint64_t pending_step = 0;  ///< Step count at whose boundary the rebuild asked for takes over; 0: none.
+    bool failed = false;        ///< A rebuild failed (the moulded shape turned a cell inside out): no more.
+    double build_seconds = 0.0; ///< Wall time of the last rebuild (build and projection) [s].
+    double wait_seconds = 0.0;  ///< How long the step waited for it at the swap [s].
+    std::vector<Vec3> rest_offsets; ///< Per lattice node, how far the rest shape of the current modes has
+                                    ///< moved [m] (ModalBasisDef::rest_offsets); empty: never rebuilt.
+};
+[[nodiscard]] SM_API BodyRemould body_remould(const World& world, Entity body);
 
 /// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
 /// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).

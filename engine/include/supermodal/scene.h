@@ -35,6 +35,9 @@ struct MaterialDef {
     double yield_stress = std::numeric_limits<double>::infinity(); ///< von Mises yield [Pa], > 0.
     double hardening = 0.0; ///< Linear hardening modulus [Pa], ≥ 0 (modal plasticity).
     double max_plastic_strain = std::numeric_limits<double>::infinity(); ///< Plastic flow limit [-], > 0.
+    /// Rest-shape change [-], ≥ 0, past which a plastic body's modes are rebuilt for its moulded shape
+    /// (ModalBodyDef::remould_threshold); 0: never.
+    double remould_threshold = 0.02;
 };
 
 /// How a scene body deforms: rigid, modal (BodyDef::modal, from "dynamics" and the material), or auto:

@@ -86,10 +86,14 @@ sm_status sm_body_get_mesh(const sm_world* world, sm_body body, int resolution, 
         const ModalBasis* basis = body_modal_basis(world->world, e);
         const std::vector<double> q =
             basis ? body_modal_state(world->world, e).amplitudes : std::vector<double>{};
+        const std::vector<Vec3> moulded =
+            basis ? body_remould(world->world, e).rest_offsets : std::vector<Vec3>{};
         for (size_t i = 0; i < mesh.positions.size(); ++i) {
             Vec3 local = mesh.positions[i] - com;
             if (basis != nullptr)
                 local += modal_displacement(*basis, rest.weights[i], q);
+            if (!moulded.empty())
+                local += interpolate_nodal(rest.weights[i], moulded);
             positions[i] = to_c(centre + rotate(orientation, local));
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <span>
 #include <string>
 
 namespace supermodal::modal
@@ -66,18 +67,51 @@ PointTable make_table(const Lattice& lattice, int subdivisions, int points_1d,
     return t;
 }
 
-/// Element stiffness and mass from the points selected by `rows` (all when empty).
-void element_matrices(const PointTable& t, const std::vector<int>& rows, double det_j, const Lame& lame,
-                      double density, Eigen::MatrixXd& out_k, Eigen::MatrixXd& out_m)
+/// Maps one point's reference gradients (row of t.grad) to the moulded cell whose nodes moved by
+/// `offsets` (isoparametric: x = X + Σ N_a u_a, F = I + Σ u_a ⊗ ∇N_a, ∇_x N = F⁻ᵀ ∇_X N); returns det F,
+/// ≤ 0 where the moulded cell is inverted.
+double moulded_gradients(const PointTable& t, int p, const Vec3* offsets, Eigen::RowVectorXd& out_grad)
+{
+    const auto count = static_cast<int>(t.n.cols());
+    Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
+    for (int a = 0; a < count; ++a)
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                f(i, j) += offsets[a][i] * t.grad(p, 3 * a + j);
+    const double det = f.determinant();
+    if (!(det > 0.0))
+        return det;
+    const Eigen::Matrix3d f_inv_t = f.inverse().transpose();
+    out_grad.resize(3 * count);
+    for (int a = 0; a < count; ++a)
+        out_grad.segment<3>(3 * a) = (f_inv_t * t.grad.row(p).segment<3>(3 * a).transpose()).transpose();
+    return det;
+}
+
+/// Element stiffness and mass from the points selected by `rows` (all when empty). With `offsets`
+/// (the cell's nodes' rest offsets [m]) the cell is integrated over its moulded shape; returns false
+/// where that shape is inverted.
+bool element_matrices(const PointTable& t, const std::vector<int>& rows, double det_j, const Lame& lame,
+                      double density, Eigen::MatrixXd& out_k, Eigen::MatrixXd& out_m,
+                      const Vec3* offsets = nullptr)
 {
     const auto count = static_cast<int>(t.n.cols());
     const int m = rows.empty() ? static_cast<int>(t.weight.size()) : static_cast<int>(rows.size());
     Eigen::MatrixXd g(m, 3 * count), gw(m, 3 * count), n(m, count), nw(m, count);
+    Eigen::RowVectorXd moved;
     for (int r = 0; r < m; ++r) {
         const int p = rows.empty() ? r : rows[r];
-        const double w = t.weight[p] * det_j;
-        g.row(r) = t.grad.row(p);
-        gw.row(r) = w * t.grad.row(p);
+        double w = t.weight[p] * det_j;
+        if (offsets != nullptr) {
+            const double det_f = moulded_gradients(t, p, offsets, moved);
+            if (!(det_f > 0.0))
+                return false;
+            w *= det_f;
+            g.row(r) = moved;
+        } else {
+            g.row(r) = t.grad.row(p);
+        }
+        gw.row(r) = w * g.row(r);
         n.row(r) = t.n.row(p);
         nw.row(r) = (w * density) * t.n.row(p);
     }
@@ -95,6 +129,7 @@ void element_matrices(const PointTable& t, const std::vector<int>& rows, double 
                                                   (i == j ? lame.mu * trace : 0.0);
         }
     out_m = n.transpose() * nw;
+    return true;
 }
 
 /// True when the inside points of a cut cell leave more than the six rigid motions strain-free: then
@@ -362,6 +397,59 @@ void scatter(const Lattice& lat, const CellWork& w, LatticeModel& model)
     }
 }
 
+/// The rest offsets [m] of cell c's nodes (its proxy's for a merged sliver).
+std::vector<Vec3> cell_offsets(const LatticeModel& model, int per_cell, int c, std::span<const Vec3> offsets)
+{
+    std::vector<Vec3> out(static_cast<size_t>(per_cell));
+    for (int a = 0; a < per_cell; ++a)
+        out[a] = offsets[static_cast<size_t>(model.cell_nodes[static_cast<size_t>(c) * per_cell + a])];
+    return out;
+}
+
+/// Integrates every kept cell again over its moulded shape (nodes moved by def.rest_offsets), on the
+/// same points, cells, slivers and nodes as the unmoulded lattice: the moulded body is the same material
+/// carried to new places. Each cell gets its own matrices.
+Status remould_cells(const ModalBasisDef& def, const Lattice& lat, const PointTable& cut, double det_j,
+                     const Lame& lame, CellWork& w, LatticeModel& model)
+{
+    const int per_cell = cell_nodes_of_order(lat.order).count;
+    const std::span<const Vec3> offsets = def.rest_offsets;
+    if (offsets.size() != static_cast<size_t>(model.node_count()))
+        return Error{"", "/rest_offsets",
+                     "expected " + std::to_string(model.node_count()) +
+                         " rest offsets (one per lattice node), found " + std::to_string(offsets.size())};
+    const PointTable full = make_table(lat, 1, 3, {});
+    const Error inverted{"", "/rest_offsets", "the moulded shape turns a lattice cell inside out"};
+    for (int c = 0; c < lat.cell_count(); ++c) {
+        if (!is_good(w.state[c]))
+            continue;
+        const std::vector<Vec3> u = cell_offsets(model, per_cell, c, offsets);
+        const bool ok =
+            w.state[c] == CellState::Full
+                ? element_matrices(full, {}, det_j, lame, def.density, w.k[c], w.m[c], u.data())
+                : element_matrices(cut, w.rows[c], det_j, lame, def.density, w.k[c], w.m[c], u.data());
+        if (!ok)
+            return inverted;
+    }
+    Eigen::MatrixXd ke, me;
+    for (int c = 0; c < lat.cell_count(); ++c) {
+        if (w.state[c] != CellState::Sliver) // merged slivers keep that state; dropped ones are Empty
+            continue;
+        const int root = model.cell_proxy[c];
+        const std::array<int, 3> a = cell_coords(lat, c), b = cell_coords(lat, root);
+        const PointTable shifted =
+            make_table(lat, def.lattice.cut_cell_subdivisions, 2, {a[0] - b[0], a[1] - b[1], a[2] - b[2]});
+        const std::vector<Vec3> u = cell_offsets(model, per_cell, root, offsets);
+        if (!element_matrices(shifted, w.rows[c], det_j, lame, def.density, ke, me, u.data()))
+            return inverted;
+        w.k[root] += ke;
+        w.m[root] += me;
+    }
+    for (int n = 0; n < model.node_count(); ++n)
+        model.node_positions[n] += offsets[static_cast<size_t>(n)];
+    return {};
+}
+
 } // namespace
 
 std::vector<int32_t> nearest_cells(const Lattice& lat, const std::vector<uint8_t>& is_source)
@@ -443,6 +531,9 @@ Result<LatticeModel> assemble_lattice_model(const ModalBasisDef& def)
         return Error{"", "/shape", "no cell of the lattice holds enough of the shape to integrate"};
     aggregate_slivers(def, lat, model.cell_proxy, det_j, lame, w, model);
     number_nodes(lat, w, model);
+    if (!def.rest_offsets.empty())
+        if (const Status s = remould_cells(def, lat, cut, det_j, lame, w, model); !s)
+            return s.error();
     scatter(lat, w, model);
     return model;
 }

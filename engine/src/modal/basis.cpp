@@ -129,6 +129,9 @@ Status validate(const ModalBasisDef& def)
     if (def.solver != ModalSolver::Auto && def.solver != ModalSolver::Dense &&
         def.solver != ModalSolver::Sparse)
         return field_error("/solver", "expected auto, dense or sparse");
+    for (const Vec3& u : def.rest_offsets)
+        if (!is_finite(u))
+            return field_error("/rest_offsets", "expected finite rest offsets [m]");
     return {};
 }
 
@@ -291,6 +294,9 @@ std::string cache_key(const ModalBasisDef& def)
                         def.lattice.element_order, def.lattice.cut_cell_subdivisions, def.mode_count,
                         static_cast<int>(def.solver), static_cast<int>(s.terms.size())})
         append_bytes(key, v);
+    for (const Vec3& u : def.rest_offsets)
+        for (const double v : {u.x, u.y, u.z})
+            append_bytes(key, v);
     return key;
 }
 } // namespace

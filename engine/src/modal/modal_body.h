@@ -12,7 +12,9 @@
 #include "modal/plasticity.h"
 #include "supermodal/modal.h"
 
+#include <future>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace supermodal
@@ -34,6 +36,19 @@ struct ModalSurface {
                                                       ///< first use.
     std::vector<double> mode_reach; ///< (r) per mode, the largest sample displacement per unit amplitude
                                     ///< [1/√kg]: what an amplitude moves the surface by, at most.
+    /// The unmoulded rest shape: material points are named by where they were on it (modal_weights).
+    /// Equal to `rest` until the body is remoulded; then `rest` holds its samples moved by rest_offsets.
+    std::shared_ptr<const Collider> material;
+    std::vector<Vec3> rest_offsets; ///< (nodes) how far the moulded rest shape moved [m]; empty: none.
+};
+
+/// A rebuild of a body's modes for its moulded rest shape, running on a thread of its own.
+struct RemouldResult {
+    std::shared_ptr<const ModalBasis> basis; ///< Null when the build failed (why: error).
+    std::string error;
+    std::vector<Vec3> rest_offsets; ///< (nodes) the moulded rest shape it was built for [m].
+    std::vector<double> projection; ///< (r × r, row-major) least-squares map of old amplitudes to new.
+    double seconds = 0.0;           ///< Wall time of the build and projection [s].
 };
 
 /// Model of a modal body: everything its step reads and never writes. Shared (read-only, any thread) by
@@ -46,6 +61,8 @@ struct ModalModel {
     ModalIntegrator integrator = ModalIntegrator::Exact;
     modal::PlasticParams plastic;    ///< Yield, hardening, limit.
     double adaptive_tolerance = 0.0; ///< ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
+    double remould_threshold = 0.0;  ///< ModalBodyDef::remould_threshold [-]; 0 = never.
+    int remould_delay_steps = 1;     ///< ModalBodyDef::remould_delay_steps [-].
     /// Each kept mode's relative frequency change from the lattice half as fine, when the lattice was
     /// chosen for the budget (modal/auto_lattice.h) [-] (r); empty otherwise.
     std::vector<double> lattice_changes;
@@ -82,6 +99,12 @@ struct ModalState {
     double plastic_strain = 0.0;    ///< Accumulated equivalent plastic strain [-] (hardening, limit).
     size_t active = 0; ///< Modes shown on the surface and felt by contact and constraints, the lowest
                        ///< ones (all unless adaptive); the others still step.
+    // Remoulding (docs/modal.md "Remoulding").
+    std::vector<double> rest_offsets;      ///< (3 × nodes) the moulded rest shape the model is built for
+                                           ///< [m] (ModalSurface::rest_offsets); empty: none.
+    uint64_t remould_step = 0;             ///< Step count at whose boundary a rebuild takes over; 0: none.
+    std::vector<double> remould_q_plastic; ///< (r) q_p when it was asked for [√kg·m]: what it absorbs.
+    bool remould_failed = false;           ///< A rebuild failed (a cell turned inside out): no more.
 };
 
 /// Loads of one substep: added by contact (nodal), constraints (load) and the host (host nodal loads,
@@ -116,6 +139,10 @@ struct ModalStats {
     std::vector<double> last_nodal_load; ///< (3 × nodes) the nodal loads F it applied [N], body frame.
     std::vector<double> last_load;       ///< (r) the generalized forces Q it applied [N/√kg].
     bool last_has_load = false;
+    // Remoulding; restore keeps them.
+    int remould_count = 0;             ///< Rebuilds swapped in.
+    double remould_seconds = 0.0;      ///< Wall time of the last rebuild [s].
+    double remould_wait_seconds = 0.0; ///< How long the last swap waited for it [s].
 };
 
 /// A modal body's deformation (only bodies made with ModalBodyDef::enabled have one).
@@ -126,6 +153,7 @@ struct ModalBody {
     ModalLoads loads;
     DeformedSurface deformed;
     ModalStats stats;
+    std::shared_future<RemouldResult> remould_job; ///< The rebuild in flight, if any (not state).
 };
 
 } // namespace supermodal

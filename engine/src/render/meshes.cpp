@@ -117,7 +117,8 @@ const GpuMesh& MeshCache::get(const TriangleMesh& mesh, const std::string& key)
     return *m_meshes.emplace(key, std::move(m)).first->second;
 }
 
-ModalSkin::ModalSkin(const GpuMesh& mesh, const ModalBasis* basis) : m_mesh(&mesh), m_basis(basis)
+ModalSkin::ModalSkin(const GpuMesh& mesh, const ModalBasis* basis, std::vector<Vec3> rest_offsets)
+    : m_mesh(&mesh), m_basis(basis), m_rest_offsets(std::move(rest_offsets))
 {
     m_weights.reserve(mesh.mesh.positions.size());
     for (const Vec3& p : mesh.mesh.positions)
@@ -162,6 +163,8 @@ void ModalSkin::update(double alpha, double scale)
         m_q[k] = scale * ((1.0 - alpha) * m_prev_q[k] + alpha * m_cur_q[k]);
     m_positions.resize(rest.positions.size());
     modal_nodal_displacements(*m_basis, m_q, m_nodal); // the modes once per node, then 20 weights per vertex
+    for (size_t n = 0; n < m_rest_offsets.size() && n < m_nodal.size(); ++n)
+        m_nodal[n] += m_rest_offsets[n]; // a remoulded rest shape, not scaled with the deformation
     for (size_t i = 0; i < rest.positions.size(); ++i)
         m_positions[i] = rest.positions[i] + interpolate_nodal(m_weights[i], m_nodal);
     // Keep the analytic rest normals (sharp superquadric edges stay sharp) and add how much the faces

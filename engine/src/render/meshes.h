@@ -55,7 +55,8 @@ class MeshCache
 class ModalSkin
 {
   public:
-    ModalSkin(const GpuMesh& mesh, const ModalBasis* basis);
+    /// rest_offsets: per lattice node, how far a remoulded body's rest shape moved [m] (empty: none).
+    ModalSkin(const GpuMesh& mesh, const ModalBasis* basis, std::vector<Vec3> rest_offsets = {});
     ~ModalSkin();
     ModalSkin(const ModalSkin&) = delete;
     ModalSkin& operator=(const ModalSkin&) = delete;
@@ -74,7 +75,8 @@ class ModalSkin
     const ModalBasis* m_basis;             ///< Owned by the world's basis cache.
     std::vector<LatticeWeights> m_weights; ///< Per vertex, computed once.
     std::vector<double> m_prev_q, m_cur_q, m_q;
-    std::vector<Vec3> m_nodal; ///< Per lattice node, this frame: the modes summed once.
+    std::vector<Vec3> m_nodal;        ///< Per lattice node, this frame: the modes summed once.
+    std::vector<Vec3> m_rest_offsets; ///< Per lattice node, the moulded rest shape's offsets [m].
     uint64_t m_step = ~uint64_t{0};
     std::vector<Vec3> m_positions, m_face_normals;
     std::vector<float> m_vertices;

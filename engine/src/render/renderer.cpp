@@ -161,7 +161,7 @@ struct Renderer::Impl {
         if (basis == nullptr)
             e.skin.reset();
         else if (!e.skin || e.skin->basis() != basis)
-            e.skin = std::make_unique<render::ModalSkin>(*e.mesh, basis);
+            e.skin = std::make_unique<render::ModalSkin>(*e.mesh, basis, body_remould(world, b).rest_offsets);
         return e;
     }
 

@@ -301,6 +301,7 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
     modal.yield_stress = material.yield_stress;
     modal.hardening = material.hardening;
     modal.max_plastic_strain = material.max_plastic_strain;
+    modal.remould_threshold = material.remould_threshold;
     r.field_int(*dynamics, dynamics_where, "modes", closed(1.0, k_max_modes), modal.mode_count);
     if (const Json* lattice = r.member(*dynamics, "lattice")) {
         const std::string lattice_where = pointer_join(dynamics_where, "lattice");

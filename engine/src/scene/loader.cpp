@@ -50,9 +50,12 @@ const std::vector<std::string_view> k_soft_keys = {"frequency",         "damping
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
-const std::vector<std::string_view> k_material_keys = {
-    "density",       "young",        "poisson",   "friction",          "restitution", "rolling_resistance",
-    "damping_ratio", "yield_stress", "hardening", "max_plastic_strain"};
+const std::vector<std::string_view> k_material_keys = {"density",          "young",
+                                                       "poisson",          "friction",
+                                                       "restitution",      "rolling_resistance",
+                                                       "damping_ratio",    "yield_stress",
+                                                       "hardening",        "max_plastic_strain",
+                                                       "remould_threshold"};
 // Same bound as validate(const WorldDef&): more substeps than this is a mistake, not a setting.
 constexpr double k_max_substeps = 1000.0;
 // Same bound as validate(const WorldDef&) on thread_count.
@@ -183,6 +186,7 @@ void read_material(Reader& r, const Json& value, const std::string& where, Mater
     r.field_number(value, where, "yield_stress", above(0.0), out_material.yield_stress);
     r.field_number(value, where, "hardening", at_least(0.0), out_material.hardening);
     r.field_number(value, where, "max_plastic_strain", above(0.0), out_material.max_plastic_strain);
+    r.field_number(value, where, "remould_threshold", at_least(0.0), out_material.remould_threshold);
 }
 
 void read_materials(Reader& r, const Json& root, Scene& out_scene)
@@ -248,7 +252,7 @@ bool same_material(const MaterialDef& a, const MaterialDef& b)
            a.friction == b.friction && a.restitution == b.restitution &&
            a.rolling_resistance == b.rolling_resistance && a.damping_ratio == b.damping_ratio &&
            a.yield_stress == b.yield_stress && a.hardening == b.hardening &&
-           a.max_plastic_strain == b.max_plastic_strain;
+           a.max_plastic_strain == b.max_plastic_strain && a.remould_threshold == b.remould_threshold;
 }
 
 // Appends an included scene: names get the prefix, root bodies and world anchors the transform.

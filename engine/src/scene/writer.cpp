@@ -83,6 +83,8 @@ Json material_json(const MaterialDef& m)
         j["hardening"] = m.hardening;
     if (std::isfinite(m.max_plastic_strain))
         j["max_plastic_strain"] = m.max_plastic_strain;
+    if (m.remould_threshold != MaterialDef{}.remould_threshold)
+        j["remould_threshold"] = m.remould_threshold;
     return j;
 }
 

@@ -148,6 +148,11 @@ Status validate(const BodyDef& def)
                          "expected a plastic strain limit > 0 (infinity: none)"};
         if (!(def.modal.adaptive_tolerance >= 0.0) || !std::isfinite(def.modal.adaptive_tolerance))
             return Error{"", "modal/adaptive_tolerance", "expected a finite displacement tolerance >= 0 m"};
+        if (!(def.modal.remould_threshold >= 0.0) || !std::isfinite(def.modal.remould_threshold))
+            return Error{"", "modal/remould_threshold",
+                         "expected a finite rest-shape change >= 0 (0: never)"};
+        if (def.modal.remould_delay_steps < 1 || def.modal.remould_delay_steps > 1000)
+            return Error{"", "modal/remould_delay_steps", "expected a step count in [1, 1000]"};
         if (def.modal.adaptive_tolerance > 0.0 && def.modal.mode_count == k_all_modes)
             return Error{"", "modal/mode_count",
                          "adaptive modes need a mode count in [1, 256], not every mode"};

@@ -7,6 +7,7 @@
 #include "modal/stress.h"
 #include "supermodal/modal.h"
 #include "world/modal_system.h"
+#include "world/remould.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -243,9 +244,30 @@ Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
     const Pose& p = w.reg.get<Pose>(e);
     const Vec3 com = w.reg.get<BodyModel>(e).mass.center_of_mass;
     Vec3 local = point_shape - com;
-    if (const ModalBody* b = w.reg.find<ModalBody>(e))
-        local += modal_displacement(*b->model->basis, point_shape, b->state.q);
+    if (const ModalBody* b = w.reg.find<ModalBody>(e)) {
+        const LatticeWeights lw = modal_weights(*b->model->basis, point_shape);
+        local += modal_displacement(*b->model->basis, lw, b->state.q);
+        if (!b->model->surface->rest_offsets.empty()) // remoulded: the rest shape moved too
+            local += interpolate_nodal(lw, b->model->surface->rest_offsets);
+    }
     return p.position + rotate(p.orientation, local);
+}
+
+BodyRemould body_remould(const World& world, Entity e)
+{
+    BodyRemould out;
+    const ModalBody* b = modal_of(world, e);
+    if (b == nullptr)
+        return out;
+    out.threshold = b->model->remould_threshold;
+    out.rest_change = rest_shape_change(*b);
+    out.rebuilds = b->stats.remould_count;
+    out.pending_step = b->state.remould_step;
+    out.failed = b->state.remould_failed;
+    out.build_seconds = b->stats.remould_seconds;
+    out.wait_seconds = b->stats.remould_wait_seconds;
+    out.rest_offsets = b->model->surface->rest_offsets;
+    return out;
 }
 
 } // namespace supermodal

@@ -16,20 +16,20 @@
 
 namespace supermodal
 {
-namespace
-{
 
 // Per rest sample, the body-frame displacement of each unit amplitude: D_s = Σ_nodes w_n φ_n (3 × r),
 // so deforming a sample costs 3r multiply-adds instead of 3·20·r.
-std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider> rest,
-                                                 std::shared_ptr<const ModalBasis> basis)
+std::shared_ptr<const ModalSurface> make_modal_surface(std::shared_ptr<const Collider> rest,
+                                                       std::shared_ptr<const ModalBasis> basis,
+                                                       std::shared_ptr<const Collider> material,
+                                                       std::vector<Vec3> rest_offsets)
 {
     auto surface = std::make_shared<ModalSurface>();
     const size_t r = static_cast<size_t>(basis->mode_count);
-    const std::vector<SurfaceSample>& samples = rest->samples->samples;
+    const std::vector<SurfaceSample>& samples = material->samples->samples; // named where they were
     surface->sample_modes.assign(samples.size() * 3 * r, 0.0);
     for (size_t i = 0; i < samples.size(); ++i) {
-        const LatticeWeights lw = modal_weights(*basis, samples[i].point + rest->com_shape);
+        const LatticeWeights lw = modal_weights(*basis, samples[i].point + material->com_shape);
         double* d = &surface->sample_modes[i * 3 * r];
         for (int j = 0; j < lw.count; ++j) {
             const double* phi = &basis->mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
@@ -46,7 +46,7 @@ std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider>
                          std::sqrt(d[k] * d[k] + d[r + k] * d[r + k] + d[2 * r + k] * d[2 * r + k]));
     }
     surface->stress =
-        std::make_shared<const modal::StressModel>(modal::build_stress_model(*basis, rest->shape));
+        std::make_shared<const modal::StressModel>(modal::build_stress_model(*basis, material->shape));
     surface->accuracy = std::make_shared<modal::AccuracyCache>();
     ModalBasisDef& def = surface->accuracy->def; // what modal_basis_def() gave the basis, from the basis
     def.shape = rest->shape;
@@ -56,10 +56,16 @@ std::shared_ptr<const ModalSurface> make_surface(std::shared_ptr<const Collider>
     def.lattice.cells = basis->cells;
     def.lattice.element_order = basis->element_order;
     def.mode_count = basis->mode_count;
+    def.rest_offsets = rest_offsets;
     surface->rest = std::move(rest);
     surface->basis = std::move(basis);
+    surface->material = std::move(material);
+    surface->rest_offsets = std::move(rest_offsets);
     return surface;
 }
+
+namespace
+{
 
 std::shared_ptr<const ModalModel> make_model(std::shared_ptr<const ModalSurface> surface,
                                              const modal::LatticeChoice& choice, const BodyDef& def)
@@ -76,6 +82,8 @@ std::shared_ptr<const ModalModel> make_model(std::shared_ptr<const ModalSurface>
     model->plastic.hardening = def.modal.hardening;
     model->plastic.max_plastic_strain = def.modal.max_plastic_strain;
     model->adaptive_tolerance = def.modal.adaptive_tolerance;
+    model->remould_threshold = def.modal.remould_threshold;
+    model->remould_delay_steps = def.modal.remould_delay_steps;
     model->lattice_changes = choice.frequency_changes;
     model->surface = std::move(surface);
     model->basis = choice.basis;
@@ -91,6 +99,8 @@ bool same_model(const ModalModel& m, const std::shared_ptr<const Collider>& rest
            m.plastic.hardening == def.modal.hardening &&
            m.plastic.max_plastic_strain == def.modal.max_plastic_strain &&
            m.adaptive_tolerance == def.modal.adaptive_tolerance &&
+           m.remould_threshold == def.modal.remould_threshold &&
+           m.remould_delay_steps == def.modal.remould_delay_steps &&
            m.lattice_changes == choice.frequency_changes;
 }
 
@@ -103,11 +113,12 @@ ModalShared shared_for(World::Impl& w, const std::shared_ptr<const Collider>& re
     for (const ModalShared& s : w.modal_models) {
         if (same_model(*s.model, rest, choice, def))
             return s;
-        if (s.model->surface->rest == rest && s.model->surface->basis == choice.basis)
+        if (s.model->surface->rest == rest && s.model->surface->basis == choice.basis &&
+            s.model->surface->rest_offsets.empty())
             surface = s.model->surface;
     }
     if (surface == nullptr)
-        surface = make_surface(rest, choice.basis);
+        surface = make_modal_surface(rest, choice.basis, rest, {});
     w.modal_models.push_back(
         {make_model(std::move(surface), choice, def), std::make_shared<ModalSubstepMaps>()});
     return w.modal_models.back();

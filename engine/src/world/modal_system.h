@@ -19,6 +19,13 @@ namespace supermodal
 struct StepContext;
 class Parallel;
 
+/// The model of a modal surface: `rest` the rest collider (its samples where the rest shape is),
+/// `material` the unmoulded one whose sample positions name the material points (the same collider
+/// unless remoulded), rest_offsets the moulded shape's node offsets [m] (empty: none).
+[[nodiscard]] std::shared_ptr<const ModalSurface> make_modal_surface(std::shared_ptr<const Collider> rest,
+                                                                     std::shared_ptr<const ModalBasis> basis,
+                                                                     std::shared_ptr<const Collider> material,
+                                                                     std::vector<Vec3> rest_offsets);
 /// The basis definition a modal BodyDef asks for.
 [[nodiscard]] ModalBasisDef modal_basis_def(const BodyDef& def);
 /// The world's basis for a modal BodyDef, built on first use and cached. An auto body (adaptive

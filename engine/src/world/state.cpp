@@ -3,6 +3,7 @@
 #include "core/assert.h"
 #include "supermodal/world.h"
 #include "world/modal_system.h"
+#include "world/remould.h"
 #include "world/state_visit.h"
 
 #include <algorithm>
@@ -116,6 +117,7 @@ struct Reader {
 // What restore rebuilds from the restored state: the deformed surfaces and the accuracy report's start.
 void after_restore(World::Impl& w)
 {
+    restore_remould(w);
     for (ModalBody& b : w.reg.store<ModalBody>().values()) {
         b.stats.most_active = std::max(b.stats.most_active, b.state.active);
         std::fill(b.stats.last_nodal_load.begin(), b.stats.last_nodal_load.end(), 0.0);

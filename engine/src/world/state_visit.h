@@ -24,7 +24,7 @@ enum class Field : uint8_t {
 };
 
 /// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
-inline constexpr uint32_t k_snapshot_layout_version = 5;
+inline constexpr uint32_t k_snapshot_layout_version = 6;
 
 [[nodiscard]] inline uint64_t entity_key(Entity e)
 {
@@ -86,6 +86,16 @@ template <class V, class S> void visit_modal(V& v, S& s, const ModalModel& m)
     v.real(s.plastic_strain, plastic);
     v.integer(s.active, m.adaptive() ? Field::Hashed : Field::Saved);
     v.check(s.active <= r, "corrupt snapshot: an active mode count is out of range");
+    // Remoulding: the moulded rest shape is hashed (empty, as for every body that was never remoulded,
+    // it adds nothing); a pending rebuild is saved so that restore asks for it again.
+    for (auto& x : v.sequence(s.rest_offsets, Field::Saved))
+        v.real(x, Field::Hashed);
+    v.integer(s.remould_step, Field::Saved);
+    for (auto& x : v.sequence(s.remould_q_plastic, Field::Saved))
+        v.real(x, Field::Saved);
+    v.flag(s.remould_failed, Field::Saved);
+    v.check(s.remould_q_plastic.size() == (s.remould_step != 0 ? r : 0),
+            "corrupt snapshot: a pending remould has the wrong mode count");
 }
 
 template <class V, class W> void visit_bodies(V& v, W& w)

@@ -7,6 +7,7 @@
 #include "world/contact_system.h"
 #include "world/integrate.h"
 #include "world/modal_system.h"
+#include "world/remould.h"
 #include "world/world_impl.h"
 
 #include <algorithm>
@@ -194,6 +195,7 @@ void World::Impl::step()
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;
     time = static_cast<double>(step_count) * def.dt;
+    remould_modal_bodies(*this); // at the step boundary, on this thread
     profile.total_ms = ms_since(step_start);
     locked = false;
 }
