@@ -95,7 +95,8 @@ TEST(AutoLattice, TheRunReportsTheChosenLatticeAndAnExplicitOneIsKept)
 {
     auto activity = [](const char* lattice) {
         const std::string text =
-            std::string(R"({"settings": {"dt": 0.0005, "accuracy": {"displacement": 1e-4}},
+            std::string(
+                R"({"settings": {"dt": 0.0005, "accuracy": {"displacement": 1e-4}, "contact": {"solver": "penalty"}},
           "materials": {"pine": {"density": 450, "young": 11e9}},
           "bodies": [{"name": "floor", "shape": {"type": "plane"}},
                      {"name": "slat", "material": "pine", "position": [0, 0.08, 0], "velocity": [0, -1, 0],
