@@ -9,6 +9,7 @@
 #include "world/world_impl.h"
 
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <numbers>
 
@@ -77,6 +78,9 @@ TEST_P(ContactRest, BodyRestsOnPlaneForTenSeconds)
     run_steps(w, 5000);
     const double smallest = std::min({c.radii.x, c.radii.y, c.radii.z});
     const sm::Vec3 p = sm::body_position(w, b);
+    std::printf("[ measured ] %s %s: sink %.3e m, drift %.3e m, speed %.3e m/s\n", c.name,
+                solver_name(solver).c_str(), c.radii.y - p.y, std::hypot(p.x - 0.3, p.z + 0.2),
+                sm::length(sm::body_linear_velocity(w, b)));
     EXPECT_LE(c.radii.y - p.y, 0.01 * smallest);
     EXPECT_LE(std::hypot(p.x - 0.3, p.z + 0.2), 1e-4);
     EXPECT_LE(sm::length(sm::body_linear_velocity(w, b)), 1e-3);
@@ -152,6 +156,8 @@ TEST_P(Contact, BlockOnInclineAboveFrictionAngleSlidesAtCoulombRate)
             m2[r][c] = c == 2 ? rhs[r] : sums[r][c];
     const double a = det(m2) / det(sums);
     const double expected = k_g * (std::sin(theta) - mu * std::cos(theta));
+    std::printf("[ measured ] slide %s: a/expected - 1 = %+.2e\n", solver_name(GetParam()).c_str(),
+                a / expected - 1.0);
     EXPECT_NEAR(a, expected, 0.02 * expected);
 }
 
@@ -173,6 +179,8 @@ TEST_P(Contact, SphereRollsAtFiveSeventhsGSinTheta)
     const double s = sm::dot(sm::body_position(w, b) - p0, down_slope);
     const double a = 2.0 * (s - v0 * t) / (t * t);
     const double expected = 5.0 / 7.0 * k_g * std::sin(theta);
+    std::printf("[ measured ] roll %s: a/expected - 1 = %+.2e\n", solver_name(GetParam()).c_str(),
+                a / expected - 1.0);
     EXPECT_NEAR(a, expected, 0.02 * expected);
 }
 
@@ -193,6 +201,8 @@ TEST_P(Contact, FastBallDoesNotTunnelThroughThinBoard)
     ball.gravity_scale = 0.0;
     const sm::Entity b = sm::create_body(w, ball);
     run_steps(w, 100);
+    std::printf("[ measured ] fast ball %s: y %.4f m, vy %.3f m/s\n", solver_name(GetParam()).c_str(),
+                sm::body_position(w, b).y, sm::body_linear_velocity(w, b).y);
     EXPECT_GT(sm::body_position(w, b).y, 0.0);
     EXPECT_GT(sm::body_linear_velocity(w, b).y, 0.0);
     EXPECT_GT(w.warnings().speculative_substeps, 0u);
@@ -269,6 +279,8 @@ TEST_P(Contact, BlockOnInclineBelowFrictionAngleStaysPut)
     run_steps(w, 250); // settle
     const sm::Vec3 p0 = sm::body_position(w, b);
     run_steps(w, 1000);
+    std::printf("[ measured ] incline hold %s: moved %.3e m\n", solver_name(GetParam()).c_str(),
+                sm::length(sm::body_position(w, b) - p0));
     EXPECT_LT(sm::length(sm::body_position(w, b) - p0), 1e-4);
 }
 
@@ -296,6 +308,8 @@ TEST_P(Contact, BounceHeightIsRestitutionSquaredTimesDropHeight)
         if (bounced && vy < 0.0)
             break;
     }
+    std::printf("[ measured ] bounce %s: apex/(e^2 h) = %.4f\n", solver_name(GetParam()).c_str(),
+                apex / (e * e * h));
     EXPECT_NEAR(apex, e * e * h, 0.05 * e * e * h);
 }
 
@@ -319,6 +333,9 @@ TEST_P(ContactMassRatio, BoxDroppedOnABoxStandsOnIt)
         w, {half, half, half}, 0.5, {0, settled.y + 2.0 * half + drop, 0}, {}, 0.5, 0.5, 1000.0 * ratio);
     run_steps(w, 1500);
     const sm::Vec3 lo = sm::body_position(w, low), hi = sm::body_position(w, high);
+    std::printf("[ measured ] mass ratio %g %s: low moved %.3e m, gap error %.3e m, speeds %.2e %.2e m/s\n",
+                ratio, solver_name(solver).c_str(), lo.y - settled.y, hi.y - lo.y - 2.0 * half,
+                sm::length(sm::body_linear_velocity(w, high)), sm::length(sm::body_linear_velocity(w, low)));
     EXPECT_NEAR(lo.y, settled.y, sink);
     EXPECT_LT(std::hypot(lo.x - settled.x, lo.z - settled.z), 1e-3);
     EXPECT_NEAR(hi.y - lo.y, 2.0 * half, sink);
