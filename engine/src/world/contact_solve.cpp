@@ -26,8 +26,8 @@ constexpr size_t k_max_rows_per_pair = 4;
 constexpr double k_flat_exponent = 0.8;
 
 // Above this a superquadric is concave: it rests on several separate tips (a star's arms), and one row
-// at the deepest would leave it pivoting on that tip (measured: an ε 3.5 star dropped at 2 ms still
-// rocked at 3.7 cm/s after 10 s). Its rows span the tips as a flat face's span its patch.
+// at the deepest did not hold it (measured: an ε 3.5 star dropped at 2 ms still moved at 3.7 cm/s after
+// 10 s). Its rows span the tips as a flat face's span its patch.
 constexpr double k_concave_exponent = 2.0;
 
 // Whether the body rests on a patch or on several tips rather than in one point.
