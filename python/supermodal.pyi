@@ -218,7 +218,7 @@ class World:
         constraint_iterations: int = 4,
         thread_count: int = 1,
         contact_enabled: bool = True,
-        contact_solver: Solver = "penalty",
+        contact_solver: Solver = "soft",
         contact_iterations: int = 10,
         solver_substeps: int = 1,
         soft_frequency_hz: float = 0.0,

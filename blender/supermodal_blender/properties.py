@@ -65,9 +65,9 @@ class SupermodalWorld(bpy.types.PropertyGroup):
                             min=1e-3, unit="TIME_ABSOLUTE")
     accuracy: FloatProperty(name="Accuracy", description="Displacement auto bodies may leave out [m]",
                             default=0.001, min=1e-9, unit="LENGTH", precision=4)
-    contact_solver: EnumProperty(name="Contact", items=[
+    contact_solver: EnumProperty(name="Contact", default="soft", items=[
+        ("soft", "Soft", "Implicit soft constraints, stable at any step (the engine's default)"),
         ("penalty", "Penalty", "The paper's explicit springs (small steps)"),
-        ("soft", "Soft", "Implicit soft constraints, stable at a game's step"),
     ])
     bake_seconds: FloatProperty(name="Last bake", description="Wall time of the last bake [s]")
 

@@ -176,8 +176,8 @@ mirror WorldDef and ContactDef (defaults in brackets):
   constraint_iterations [4], in [1, 100]: Gauss-Seidel passes over the joints per substep.
   thread_count [1], in [1, 64]: threads of the step (fixed at creation; results are identical for any).
   contact_enabled [True].
-  contact_solver ['penalty']: 'penalty' (explicit springs, want small steps) or 'soft' (implicit,
-      stable at any step).
+  contact_solver ['soft']: 'soft' (implicit, stable at any step) or 'penalty' (the paper's explicit
+      springs, want small steps).
   contact_iterations [10], in [1, 100]: the soft solver's passes per substep.
   solver_substeps [1], in [1, 64]: the soft solver's substeps per narrowphase (4 holds tall stacks
       at 1/60 s for one narrowphase per step).

@@ -17,7 +17,9 @@ namespace sm = supermodal;
 // motion and the block crept towards the constraint point (measured: 1.46 mm in 3 s, steadily).
 TEST(RestingConstraint, PulledBlockInStaticFrictionDoesNotCreep)
 {
+    // The penalty solver's friction anchors (update_contact_anchors) are what this checks.
     sm::WorldDef def = sm::default_world_def();
+    def.contact.solver = sm::ContactSolver::Penalty;
     def.dt = 1e-3;
     def.substep_count = 4;
     sm::World w(def);

@@ -23,6 +23,7 @@ sm::World make_world(double dt, sm::ContactStiffness stiffness)
 {
     sm::WorldDef def = sm::default_world_def();
     def.dt = dt;
+    def.contact.solver = sm::ContactSolver::Penalty; // Hertz stiffness is the penalty solver's
     def.contact.stiffness = stiffness;
     def.contact.path = sm::ContactPath::SupportMap; // one point: the sphere–plane Hertz case exactly
     return sm::World(def);

@@ -19,10 +19,11 @@ namespace
 constexpr double k_g = 9.81;
 constexpr double k_radius = 0.05; // [m]
 
-sm::World make_world()
+sm::World make_world(sm::ContactSolver solver)
 {
     sm::WorldDef def = sm::default_world_def();
     def.dt = 0.002;
+    def.contact.solver = solver;
     return sm::World(def);
 }
 
@@ -48,12 +49,17 @@ sm::Entity add_ball(sm::World& w, sm::Vec3 position, double rolling_resistance)
 
 } // namespace
 
-TEST(RollingResistance, BallRollsToAStopAtFiveSeventhsGEllOverR)
+// Each test on both contact solvers (the parameter, named in the test).
+class RollingResistance : public ::testing::TestWithParam<sm::ContactSolver>
+{
+};
+
+TEST_P(RollingResistance, BallRollsToAStopAtFiveSeventhsGEllOverR)
 {
     // v0 = 0.5 m/s, ℓ = 1 mm, r = 5 cm: a = (5/7)·9.81·0.02 = 0.140 m/s², stopping in 3.57 s after
     // v0²/(2a) = 0.892 m. Measured (2026-11-26) within 0.12% of each; asserted within 1% (the ball sits
     // on its penalty spring a fraction of a millimetre deep, so its lever differs from r by that share).
-    sm::World w = make_world();
+    sm::World w = make_world(GetParam());
     add_plane(w, {0, 1, 0});
     const double ell = 0.001, v0 = 0.5;
     const sm::Entity b = add_ball(w, {0, k_radius, 0}, ell);
@@ -73,7 +79,7 @@ TEST(RollingResistance, BallRollsToAStopAtFiveSeventhsGEllOverR)
     EXPECT_LT(sm::length(sm::body_linear_velocity(w, b)), 1e-4);
 }
 
-TEST(RollingResistance, HoldsOnASlopeBelowEllOverRAndRollsAbove)
+TEST_P(RollingResistance, HoldsOnASlopeBelowEllOverRAndRollsAbove)
 {
     // Static rolling resistance holds a ball where tan θ ≤ ℓ/r = 0.05 (2.86°): at 2° it stays, at 4° it
     // rolls off at (5/7)·g·(sin θ − cos θ·ℓ/r) = 0.139 m/s² (measured within 0.02%; asserted within
@@ -82,7 +88,7 @@ TEST(RollingResistance, HoldsOnASlopeBelowEllOverRAndRollsAbove)
         const double theta = degrees * std::numbers::pi / 180.0;
         const sm::Vec3 up{-std::sin(theta), std::cos(theta), 0};
         const sm::Vec3 down{-std::cos(theta), -std::sin(theta), 0};
-        sm::World w = make_world();
+        sm::World w = make_world(GetParam());
         add_plane(w, up);
         const sm::Entity b = add_ball(w, k_radius * up, 0.0025);
         run_steps(w, 250);
@@ -100,10 +106,10 @@ TEST(RollingResistance, HoldsOnASlopeBelowEllOverRAndRollsAbove)
     }
 }
 
-TEST(RollingResistance, ZeroKeepsTheBallRolling)
+TEST_P(RollingResistance, ZeroKeepsTheBallRolling)
 {
     // The default (ℓ = 0): no rolling torque, a rolling ball on the level keeps its speed to 0.1%.
-    sm::World w = make_world();
+    sm::World w = make_world(GetParam());
     add_plane(w, {0, 1, 0});
     const sm::Entity b = add_ball(w, {0, k_radius, 0}, 0.0);
     run_steps(w, 50);
@@ -113,9 +119,9 @@ TEST(RollingResistance, ZeroKeepsTheBallRolling)
     EXPECT_NEAR(sm::body_linear_velocity(w, b).x, 0.5, 5e-4);
 }
 
-TEST(RollingResistance, AnchorIsStateSnapshotRestoreContinuesBitIdentical)
+TEST_P(RollingResistance, AnchorIsStateSnapshotRestoreContinuesBitIdentical)
 {
-    sm::World w = make_world();
+    sm::World w = make_world(GetParam());
     add_plane(w, {0, 1, 0});
     const sm::Entity b = add_ball(w, {0, k_radius, 0}, 0.001);
     run_steps(w, 50);
@@ -129,3 +135,9 @@ TEST(RollingResistance, AnchorIsStateSnapshotRestoreContinuesBitIdentical)
     run_steps(w, 100);
     EXPECT_EQ(w.state_hash(), expected);
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, RollingResistance,
+                         ::testing::Values(sm::ContactSolver::Penalty, sm::ContactSolver::Soft),
+                         [](const auto& info) {
+                             return std::string(info.param == sm::ContactSolver::Soft ? "soft" : "penalty");
+                         });

@@ -37,9 +37,10 @@ sm::Entity add_static_plane(sm::World& w, sm::Vec3 normal, double offset)
 
 // ~100 spheres, ellipsoids and rounded boxes on a jittered grid in a 0.5 m wide box of planes,
 // low enough that they are piled up and touching well before 200 steps.
-sm::World make_pile(int threads, std::shared_ptr<sm::TaskSystem> tasks = {})
+sm::World make_pile(sm::ContactSolver solver, int threads, std::shared_ptr<sm::TaskSystem> tasks = {})
 {
     sm::WorldDef def = sm::default_world_def();
+    def.contact.solver = solver;
     def.dt = 1.0 / 240.0;
     def.thread_count = threads;
     def.task_system = std::move(tasks);
@@ -79,9 +80,9 @@ struct PileRun {
     std::vector<sm::ContactEvent> events;
 };
 
-PileRun run_pile(int threads, int steps, std::shared_ptr<sm::TaskSystem> tasks = {})
+PileRun run_pile(sm::ContactSolver solver, int threads, int steps, std::shared_ptr<sm::TaskSystem> tasks = {})
 {
-    sm::World w = make_pile(threads, std::move(tasks));
+    sm::World w = make_pile(solver, threads, std::move(tasks));
     PileRun out;
     for (int s = 0; s < steps; ++s) {
         w.step();
@@ -139,9 +140,11 @@ class ThreadPerPartTasks final : public sm::TaskSystem
 };
 
 // Eight soft modal balls (supermodal tests' soft ball, scaled down) dropped on each other and the ground.
-sm::World make_modal_pile(int threads, const std::shared_ptr<sm::ModalBasisCache>& cache)
+sm::World make_modal_pile(sm::ContactSolver solver, int threads,
+                          const std::shared_ptr<sm::ModalBasisCache>& cache)
 {
     sm::WorldDef def = sm::default_world_def();
+    def.contact.solver = solver;
     def.dt = 1.0 / 240.0;
     def.thread_count = threads;
     def.modal_basis_cache = cache;
@@ -159,17 +162,22 @@ sm::World make_modal_pile(int threads, const std::shared_ptr<sm::ModalBasisCache
 
 } // namespace
 
-TEST(ContactThreads, PileHashIsTheSameForAnyThreadCountAndRun)
+// The determinism tests on both contact solvers (the parameter, named in the test).
+class ContactThreadsBySolver : public ::testing::TestWithParam<sm::ContactSolver>
+{
+};
+
+TEST_P(ContactThreadsBySolver, PileHashIsTheSameForAnyThreadCountAndRun)
 {
     constexpr int k_steps = 200;
-    const PileRun one = run_pile(1, k_steps);
+    const PileRun one = run_pile(GetParam(), 1, k_steps);
     // The pile must be in contact, or equal hashes would prove nothing about the threaded stages.
     EXPECT_GT(one.contacts, 100u);
     EXPECT_GT(one.events.size(), 1000u);
-    const PileRun again = run_pile(1, k_steps);
+    const PileRun again = run_pile(GetParam(), 1, k_steps);
     EXPECT_EQ(again.hash, one.hash);
     for (int threads : {2, 3, 8}) {
-        const PileRun many = run_pile(threads, k_steps);
+        const PileRun many = run_pile(GetParam(), threads, k_steps);
         EXPECT_EQ(many.hash, one.hash) << threads << " threads";
         EXPECT_EQ(many.contacts, one.contacts) << threads << " threads";
         EXPECT_EQ(many.support_calls, one.support_calls) << threads << " threads";
@@ -177,9 +185,9 @@ TEST(ContactThreads, PileHashIsTheSameForAnyThreadCountAndRun)
     }
 }
 
-TEST(ContactThreads, SnapshotRestoreRerunGivesTheSameHashWithTwoThreads)
+TEST_P(ContactThreadsBySolver, SnapshotRestoreRerunGivesTheSameHashWithTwoThreads)
 {
-    sm::World w = make_pile(2);
+    sm::World w = make_pile(GetParam(), 2);
     sm::test::run_steps(w, 100);
     const sm::Snapshot snap = w.snapshot();
     sm::test::run_steps(w, 50);
@@ -189,35 +197,41 @@ TEST(ContactThreads, SnapshotRestoreRerunGivesTheSameHashWithTwoThreads)
     EXPECT_EQ(w.state_hash(), first);
 }
 
-TEST(ContactThreads, AnyHostSchedulerGivesTheSameHashAsOneThread)
+TEST_P(ContactThreadsBySolver, AnyHostSchedulerGivesTheSameHashAsOneThread)
 {
     constexpr int k_steps = 120;
-    const PileRun one = run_pile(1, k_steps);
+    const PileRun one = run_pile(GetParam(), 1, k_steps);
     auto reverse = std::make_shared<ReverseSerialTasks>(3);
-    const PileRun reversed = run_pile(1, k_steps, reverse);
+    const PileRun reversed = run_pile(GetParam(), 1, k_steps, reverse);
     EXPECT_GT(reverse->runs, k_steps); // the world really handed its loops to the host's scheduler
     EXPECT_EQ(reversed.hash, one.hash);
     EXPECT_EQ(reversed.support_calls, one.support_calls);
     EXPECT_TRUE(same_events(reversed.events, one.events));
-    const PileRun per_part = run_pile(1, k_steps, std::make_shared<ThreadPerPartTasks>());
+    const PileRun per_part = run_pile(GetParam(), 1, k_steps, std::make_shared<ThreadPerPartTasks>());
     EXPECT_EQ(per_part.hash, one.hash);
     EXPECT_TRUE(same_events(per_part.events, one.events));
 }
 
-TEST(ContactThreads, ModalPileHashIsTheSameForAnyThreadCount)
+TEST_P(ContactThreadsBySolver, ModalPileHashIsTheSameForAnyThreadCount)
 {
     // Contact pairs with modal bodies, the modal update and the surfaces all run on the threads.
     constexpr int k_steps = 240;
     auto cache = std::make_shared<sm::ModalBasisCache>();
-    sm::World one = make_modal_pile(1, cache);
+    sm::World one = make_modal_pile(GetParam(), 1, cache);
     sm::test::run_steps(one, k_steps);
     ASSERT_GT(sm::world_contacts(one).size(), 4u); // touching, or the test would prove nothing
     for (int threads : {2, 3}) {
-        sm::World many = make_modal_pile(threads, cache);
+        sm::World many = make_modal_pile(GetParam(), threads, cache);
         sm::test::run_steps(many, k_steps);
         EXPECT_EQ(many.state_hash(), one.state_hash()) << threads << " threads";
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, ContactThreadsBySolver,
+                         ::testing::Values(sm::ContactSolver::Penalty, sm::ContactSolver::Soft),
+                         [](const auto& info) {
+                             return std::string(info.param == sm::ContactSolver::Soft ? "soft" : "penalty");
+                         });
 
 TEST(Parallel, StaticPartitionCoversEveryIndexOnce)
 {

@@ -248,7 +248,11 @@ TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecays)
     // A 5 cm steel-density ball falls 0.2 m onto the centre of a free board that floats (gravity_scale 0).
     // Contact loads the modes through the point-load hook: the flatwise bending mode must ring (> 0,
     // finite), the antisymmetric modes stay near zero by symmetry, and the ring decays at ζω.
+    // On the penalty solver, whose sampled points load the board symmetrically about the strike. On the
+    // soft solver the antisymmetric mode 1 reached 7e-4 of the bending mode (measured; docs/contact.md,
+    // Limits), over this test's 1e-6.
     sm::WorldDef wdef = sm::default_world_def();
+    wdef.contact.solver = sm::ContactSolver::Penalty;
     wdef.dt = 1e-4;
     sm::World world(wdef);
     const double zeta = 0.05;

@@ -19,7 +19,7 @@ def test_defaults_mirror_the_defs():
     s = w.settings()
     assert s["dt"] == 0.002 and s["substep_count"] == 1
     assert s["gravity"] == (0.0, -9.81, 0.0)
-    assert s["contact_solver"] == "penalty" and s["contact_iterations"] == 10
+    assert s["contact_solver"] == "soft" and s["contact_iterations"] == 10
     assert s["solver_substeps"] == 1
     b = w.create_body()
     assert b.position == (0.0, 0.0, 0.0) and b.orientation == (1.0, 0.0, 0.0, 0.0)
@@ -40,7 +40,7 @@ def test_free_fall_matches_the_integrator():
 def test_ball_comes_to_rest_on_the_ground():
     w, ball = ball_world()
     w.step(1500)  # 3 s
-    # Rests on the plane y = 0 at its radius, within the penalty spring's sag (a few mm at the default cap).
+    # Rests on the plane y = 0 at its radius, within the contact spring's sag (a few mm at most).
     assert ball.position[1] == pytest.approx(0.5, abs=5e-3)
 
 
@@ -54,13 +54,13 @@ def test_advance_and_interpolation_alpha():
 def test_settings_change_between_steps():
     w, _ = ball_world()
     w.substep_count = 4
-    w.contact_solver = "soft"
+    w.contact_solver = "penalty"
     w.contact_iterations = 20
     w.constraint_iterations = 8
     w.configure(gravity=(0, -1.62, 0))
     s = w.settings()
     assert (s["substep_count"], s["contact_solver"], s["contact_iterations"], s["constraint_iterations"]) == (
-        4, "soft", 20, 8)
+        4, "penalty", 20, 8)
     assert s["gravity"] == (0.0, -1.62, 0.0)
     w.step()
     with pytest.raises(sm.ArgumentError) as e:

@@ -111,7 +111,9 @@ TEST(ChairSample, ResizedSeatKeepsItsLegs)
     ASSERT_TRUE(sm::set_body_shape(w, seat, bigger).ok());
     EXPECT_GT(sm::body_mass_properties(w, seat).mass, 1.3 * mass_before); // 0.5²·0.06 vs 0.44²·0.05
     const sm::Vec3 leg_before = sm::body_position(w, sm::find_body(w, "leg_fl"));
-    run_for(w, 1.0);
+    // 2 s to come to rest after the resize.
+    // Measured on the soft solver (the default): the seat at 2.3 cm/s after 1 s, 0.06 mm/s after 1.5 s.
+    run_for(w, 2.0);
     for (sm::Constraint c : sm::world_constraints(w))
         EXPECT_LT(sm::constraint_error(w, c).linear, 1e-3) << sm::constraint_def(w, c).name;
     // The front-left leg moved out with its anchor: 0.18·(0.25/0.22 − 1) ≈ 2.5 cm along x and z.

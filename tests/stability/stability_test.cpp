@@ -33,8 +33,9 @@ void expect_finite(const st::CellResult& r)
     EXPECT_EQ(r.warnings.modal_non_finite, 0u);
 }
 
-void expect_claimed_stable(const std::string& label, const st::CellDef& def)
+void expect_claimed_stable(const std::string& label, st::CellDef def, supermodal::ContactSolver solver)
 {
+    def.solver = solver;
     const st::CellResult r = st::run_cell(def);
     SCOPED_TRACE(label + " " + st::csv_row("", def, r));
     expect_finite(r);
@@ -44,35 +45,47 @@ void expect_claimed_stable(const std::string& label, const st::CellDef& def)
 
 } // namespace
 
-TEST(StabilityMap, DropEpsilonTimesAspect)
+// Every slice on both contact solvers (the parameter, named in the test). The soft solver is implicit, so
+// no cell may gain either, including the steps far past the penalty limit and the stiff impacts; there
+// frequency_hz sets its spring. Heavy on light (mass ratio 10^6) on the soft solver is the regression of
+// the lower body's scaled mass (contact_solve.cpp, scale_heavy_on_light): unscaled, the passes could not
+// stop the heavy body on the light one's effective mass and shot the light body out (measured gain
+// 1.5·10^9 E_ref at dt/limit 0.1, 14.6 at mass ratio 1000); docs/contact.md.
+class StabilityMap : public ::testing::TestWithParam<supermodal::ContactSolver>
+{
+};
+
+TEST_P(StabilityMap, DropEpsilonTimesAspect)
 {
     // Corners of ε 0.01…4 × aspect 1…1000, a box, an ellipsoid and an octahedron inside, and the former
     // failures: ε 1.5 (rim) and ε 2, 4 (tip) at aspect 30.
     for (const double e : {0.01, 0.3, 1.0, 1.5, 2.0, 4.0})
         for (const double a : {1.0, 30.0, 1000.0})
-            expect_claimed_stable("drop",
-                                  {.scene = st::Scene::Drop, .epsilon = e, .aspect = a, .seconds = 0.6});
+            expect_claimed_stable(
+                "drop", {.scene = st::Scene::Drop, .epsilon = e, .aspect = a, .seconds = 0.6}, GetParam());
 }
 
-TEST(StabilityMap, StackMassRatioTimesStep)
+TEST_P(StabilityMap, StackMassRatioTimesStep)
 {
     // Light on heavy and heavy on light to 10^6, with dt from 0.1 to 10 × the contact limit 1/(10 f).
     for (const double m : {1e-6, 1.0, 1e6})
         for (const double r : {0.1, 1.0, 10.0})
-            expect_claimed_stable(
-                "stack", {.scene = st::Scene::Stack, .mass_ratio = m, .dt_ratio = r, .seconds = 0.6});
+            expect_claimed_stable("stack",
+                                  {.scene = st::Scene::Stack, .mass_ratio = m, .dt_ratio = r, .seconds = 0.6},
+                                  GetParam());
 }
 
-TEST(StabilityMap, ImpactFrequencyTimesSpeed)
+TEST_P(StabilityMap, ImpactFrequencyTimesSpeed)
 {
-    // Penalty frequency 1 Hz … 20 × the cap (50 Hz at dt = 2 ms) × speed 1 cm/s … 1 km/s.
+    // Contact frequency 1 Hz … 20 × the penalty cap (50 Hz at dt = 2 ms) × speed 1 cm/s … 1 km/s.
     for (const double f : {1.0, 50.0, 1000.0})
         for (const double v : {0.01, 3.0, 1000.0})
-            expect_claimed_stable(
-                "impact", {.scene = st::Scene::Impact, .frequency_hz = f, .speed = v, .seconds = 0.4});
+            expect_claimed_stable("impact",
+                                  {.scene = st::Scene::Impact, .frequency_hz = f, .speed = v, .seconds = 0.4},
+                                  GetParam());
 }
 
-TEST(StabilityMap, ModalCentralDifferenceStepTimesEpsilon)
+TEST_P(StabilityMap, ModalCentralDifferenceStepTimesEpsilon)
 {
     // Central difference below and past its limit 2/ω_max (the guard steps the modes past it exactly).
     // ε = 3 at dt/limit 0.1 and 0.3 is the regression of the fix in penalty.cpp: the modal inverse mass
@@ -81,49 +94,30 @@ TEST(StabilityMap, ModalCentralDifferenceStepTimesEpsilon)
     for (const double e : {0.3, 1.0, 3.0})
         for (const double r : {0.1, 0.3, 1.1, 10.0})
             expect_claimed_stable(
-                "modal", {.scene = st::Scene::ModalDrop, .epsilon = e, .dt_ratio = r, .seconds = 0.5});
+                "modal", {.scene = st::Scene::ModalDrop, .epsilon = e, .dt_ratio = r, .seconds = 0.5},
+                GetParam());
 }
 
-TEST(StabilityMap, ModalExactStepTimesEpsilon)
+TEST_P(StabilityMap, ModalExactStepTimesEpsilon)
 {
     // The exact integrator over the same grid as central difference (it needs no guard). ε 1 and 2 at
     // dt/limit 0.1 are the regression of the kick split in modal_world.cpp: the held-force step gained
     // +67% and +108% E_ref there (docs/stability.md "Found and fixed").
     for (const double e : {0.3, 1.0, 2.0, 3.0})
         for (const double r : {0.1, 0.3, 1.1, 10.0})
-            expect_claimed_stable("modal exact", {.scene = st::Scene::ModalDrop,
-                                                  .epsilon = e,
-                                                  .dt_ratio = r,
-                                                  .seconds = 0.5,
-                                                  .exact_modal = true});
+            expect_claimed_stable("modal exact",
+                                  {.scene = st::Scene::ModalDrop,
+                                   .epsilon = e,
+                                   .dt_ratio = r,
+                                   .seconds = 0.5,
+                                   .exact_modal = true},
+                                  GetParam());
 }
 
-TEST(StabilityMap, SoftSolverOnEveryScene)
-{
-    // The same corners on the soft contact solver: it is implicit, so no cell may gain either, including
-    // the steps far past the penalty limit and the stiff impacts. Heavy on light (mass ratio 10^6) is the
-    // regression of the lower body's scaled mass (contact_solve.cpp, scale_heavy_on_light): unscaled, the
-    // passes could not stop the heavy body on the light one's effective mass and shot the light body out
-    // (measured gain 1.5·10^9 E_ref at dt/limit 0.1, 14.6 at mass ratio 1000); docs/contact.md.
-    const auto soft = supermodal::ContactSolver::Soft;
-    for (const double e : {0.01, 1.0, 1.5, 4.0})
-        for (const double a : {1.0, 30.0, 1000.0})
-            expect_claimed_stable(
-                "soft drop",
-                {.scene = st::Scene::Drop, .epsilon = e, .aspect = a, .seconds = 0.6, .solver = soft});
-    for (const double m : {1e-6, 1.0, 1e6})
-        for (const double r : {0.1, 10.0})
-            expect_claimed_stable(
-                "soft stack",
-                {.scene = st::Scene::Stack, .mass_ratio = m, .dt_ratio = r, .seconds = 0.6, .solver = soft});
-    for (const double f : {1.0, 1000.0})
-        for (const double v : {0.01, 1000.0})
-            expect_claimed_stable(
-                "soft impact",
-                {.scene = st::Scene::Impact, .frequency_hz = f, .speed = v, .seconds = 0.4, .solver = soft});
-    for (const double e : {0.3, 1.0, 3.0})
-        for (const double r : {0.1, 10.0})
-            expect_claimed_stable(
-                "soft modal",
-                {.scene = st::Scene::ModalDrop, .epsilon = e, .dt_ratio = r, .seconds = 0.5, .solver = soft});
-}
+INSTANTIATE_TEST_SUITE_P(Solvers, StabilityMap,
+                         ::testing::Values(supermodal::ContactSolver::Penalty,
+                                           supermodal::ContactSolver::Soft),
+                         [](const auto& info) {
+                             return std::string(info.param == supermodal::ContactSolver::Soft ? "soft"
+                                                                                              : "penalty");
+                         });

@@ -173,8 +173,10 @@ TEST(BenchCli, ModesSweepEndsWithTheFullLattice)
     // 3.4 mm RMS; before the reference kept every mode it held 8, and the full row was the farthest).
     const fs::path dir = temp_dir("full");
     const fs::path path = dir / "board.json";
+    // On the penalty solver, whose frequency --fixed-contact holds (on the soft one the full row measured
+    // 0.151 mm RMS against 0.109 mm for one mode).
     std::ofstream(path) << R"({
-  "settings": { "dt": 0.001, "duration": 0.05 },
+  "settings": { "dt": 0.001, "duration": 0.05, "contact": { "solver": "penalty" } },
   "materials": { "foam": { "density": 300, "young": 2e6 } },
   "bodies": [
     { "name": "ground", "motion": "static", "shape": { "type": "plane", "normal": [0, 1, 0], "offset": 0 } },

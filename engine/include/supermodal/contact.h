@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Contact: settings, and what the host can read back after a step.
 //
-// Two solvers. Soft: each contact point is a spring–damper given by a frequency and a damping ratio,
-// solved implicitly as a velocity constraint together with the joints (warm started, relaxed after the
-// positions move), so its stability does not depend on the step; friction is a velocity constraint
-// bounded by the Coulomb cone. Penalty (the paper's, the default): an explicit spring–damper force
+// Two solvers. Soft (the default): each contact point is a spring–damper given by a frequency and a
+// damping ratio, solved implicitly as a velocity constraint together with the joints (warm started,
+// relaxed after the positions move), so its stability does not depend on the step; friction is a velocity
+// constraint bounded by the Coulomb cone. Penalty (the paper's): an explicit spring–damper force
 // whose stiffness comes from a natural frequency and the pair's effective mass (k = m_eff·(2πf)²,
 // c = 2ζ·m_eff·2πf), stable while 2πf·h stays small; friction is a tangential spring anchored where
 // the contact started to stick (Cundall–Strack), clamped to the Coulomb cone. Either way the per-pair
@@ -39,9 +39,8 @@ enum class ContactStiffness : uint8_t {
 
 /// How contact forces are found.
 enum class ContactSolver : uint8_t {
-    Soft,    ///< Implicit soft constraints, solved with the joints: stable at any step.
-    Penalty, ///< Explicit penalty springs (the paper's, the default): needs 2πf·h small, so small steps
-             ///< or substeps.
+    Soft,    ///< Implicit soft constraints, solved with the joints (the default): stable at any step.
+    Penalty, ///< Explicit penalty springs (the paper's): needs 2πf·h small, so small steps or substeps.
 };
 
 /// Settings of the soft solver. The spring of a point acts on the point's effective mass, so one
@@ -65,7 +64,7 @@ struct SoftContactDef {
 /// World-wide contact settings. Start from the defaults and change what differs.
 struct ContactDef {
     bool enabled = true;
-    ContactSolver solver = ContactSolver::Penalty;
+    ContactSolver solver = ContactSolver::Soft;
     SoftContactDef soft{}; ///< The soft solver's settings (solver == Soft).
     ContactPath path = ContactPath::Auto;
     double frequency_hz = 0.0;       ///< Penalty natural frequency [Hz]; 0 = the stability cap 1/(10·h)

@@ -127,9 +127,22 @@ Vec3 anchor_spin(const Side& s)
     return s.modal.active() ? angular_velocity(s) + modal_anchor_spin(s.modal) : angular_velocity(s);
 }
 
+namespace
+{
+
+// Whether the side's body was frozen (made immovable) since the side was made: a body that turned
+// non-finite in one pass of the soft solver must not be moved by the rows' later passes, which would make
+// it non-finite, and report it, again.
+bool frozen_since(const Side& s)
+{
+    return s.m != nullptr && s.m->inv_mass == 0.0;
+}
+
+} // namespace
+
 void push_rigid_spin(Side& s, const Vec3& angular_impulse)
 {
-    if (s.v != nullptr && s.inv_mass != 0.0)
+    if (s.v != nullptr && s.inv_mass != 0.0 && !frozen_since(s))
         s.v->angular += s.inv_inertia * angular_impulse;
 }
 
@@ -137,7 +150,7 @@ void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
 {
     if (s.modal.active())
         modal_anchor_push(s.modal, impulse, angular_impulse);
-    if (s.v == nullptr || s.inv_mass == 0.0)
+    if (s.v == nullptr || s.inv_mass == 0.0 || frozen_since(s))
         return;
     s.v->linear += s.inv_mass * impulse;
     s.v->angular += s.inv_inertia * (cross(s.r, impulse) + angular_impulse);
