@@ -246,8 +246,9 @@ TEST_P(Contact, AbsurdSpeedCapsTheExtraSubstepsInsteadOfOverflowing)
 
 TEST_P(Contact, SameSceneSameHashAndSnapshotKeepsAnchors)
 {
-    auto build = [this] {
-        sm::World w = make_world(GetParam());
+    const auto solver = GetParam();
+    auto build = [solver] {
+        sm::World w = make_world(solver);
         add_plane(w, {0, 1, 0});
         for (int i = 0; i < 4; ++i)
             add_body(w, {0.1, 0.08, 0.06}, 0.5 + 0.2 * i, {0.05 * i, 0.15 + 0.21 * i, 0.02 * i},
