@@ -34,15 +34,22 @@ constexpr double k_max_fraction = 0.01;
 /// The editor with `args` in a 1280x720 virtual X server. `xvfb-run -a` takes the first free display
 /// from -n on; two runs starting together (other builds on the machine) can both pick it and one X
 /// server then fails to start, so the search starts at a number of this process's own and a failed
-/// start is tried once more. The editor's own failures are not retried.
+/// start is tried once more. The editor's own failures are not retried. The X authority file is ours
+/// (-f): with its own temporary folder, xvfb-run now and then fails to remove it after the editor
+/// exits and then replaces the editor's exit status with its own 5.
 sm::test::CommandOutcome run_in_xvfb(const std::string& args)
 {
     sm::test::CommandOutcome o;
     for (int attempt = 0; attempt < 2; ++attempt) {
         const int display = 100 + static_cast<int>((::getpid() * 7 + attempt * 397) % 800);
-        o = sm::test::run_command("xvfb-run -a -n " + std::to_string(display) +
+        const std::filesystem::path auth = std::filesystem::temp_directory_path() /
+                                           ("sm_window_test_" + std::to_string(::getpid()) + ".xauth");
+        std::ofstream(auth).close();
+        o = sm::test::run_command("xvfb-run -a -n " + std::to_string(display) + " -f " + auth.string() +
                                   " -s '-screen 0 1280x720x24' " + std::string(SM_EDITOR_EXE) + " " + args +
                                   " 2>&1");
+        std::error_code ignored;
+        std::filesystem::remove(auth, ignored);
         if (o.output.find("Xvfb failed to start") == std::string::npos)
             break;
     }
