@@ -243,16 +243,16 @@ TEST(ModalWorld, StaticPointLoadGivesStaticDeflection)
     EXPECT_NEAR(relative, expected, 0.03 * expected);
 }
 
-TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecays)
+namespace
 {
-    // A 5 cm steel-density ball falls 0.2 m onto the centre of a free board that floats (gravity_scale 0).
-    // Contact loads the modes through the point-load hook: the flatwise bending mode must ring (> 0,
-    // finite), the antisymmetric modes stay near zero by symmetry, and the ring decays at ζω.
-    // On the penalty solver, whose sampled points load the board symmetrically about the strike. On the
-    // soft solver the antisymmetric mode 1 reached 7e-4 of the bending mode (measured; docs/contact.md,
-    // Limits), over this test's 1e-6.
+
+// A 5 cm steel-density ball falls 0.2 m onto the centre of a free board that floats (gravity_scale 0).
+// Contact loads the modes through the point-load hook: the flatwise bending mode must ring (> 0,
+// finite), the edgewise modes stay below `symmetry` of it by symmetry, and the ring decays at ζω.
+void drop_ball_on_board(sm::ContactSolver solver, double symmetry)
+{
     sm::WorldDef wdef = sm::default_world_def();
-    wdef.contact.solver = sm::ContactSolver::Penalty;
+    wdef.contact.solver = solver;
     wdef.dt = 1e-4;
     sm::World world(wdef);
     const double zeta = 0.05;
@@ -299,8 +299,7 @@ TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecays)
     const double second = envelope(window);
     EXPECT_GT(first, 1e-7); // measured 1e-4 √kg·m, about 0.1 mm at the centre
     EXPECT_TRUE(std::isfinite(first));
-    // The load is symmetric about the board's y axis: the edgewise (z) bending mode stays unexcited
-    // (measured 1e-17 against 1e-4: sample round-off only).
+    // The load is symmetric about the board's y axis: the edgewise (z) bending mode stays unexcited.
     int edgewise = 0;
     for (size_t k = 0; k < basis.frequencies_hz.size(); ++k) {
         std::vector<double> unit(basis.mode_count, 0.0);
@@ -308,13 +307,29 @@ TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecays)
         const sm::Vec3 u = sm::modal_displacement(basis, sm::Vec3{0, 0, 0}, unit);
         if (std::abs(u.z) > 10.0 * std::max(std::abs(u.x), std::abs(u.y))) {
             ++edgewise;
-            EXPECT_LT(std::abs(sm::body_modal_state(world, board).amplitudes[k]), 1e-6 * first)
+            EXPECT_LT(std::abs(sm::body_modal_state(world, board).amplitudes[k]), symmetry * first)
                 << "mode " << k;
         }
     }
     EXPECT_GT(edgewise, 0);
     EXPECT_NEAR(second / first, std::exp(-zeta * omega * gap * 1e-4), 0.05);
     (void)b;
+}
+
+} // namespace
+
+TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecays)
+{
+    // The penalty method loads the board at its sampled points, symmetric about the strike: the edgewise
+    // mode is sample round-off (measured 1e-17 of the bending mode).
+    drop_ball_on_board(sm::ContactSolver::Penalty, 1e-6);
+}
+
+TEST(ModalWorld, BallDroppedOnBoardExcitesBendingThatDecaysOnTheSoftSolver)
+{
+    // The soft solver takes a pair's rows one after the other, so the first of two mirrored rows takes a
+    // little more of the blow: the edgewise mode reaches 5.3e-4 of the bending mode (measured).
+    drop_ball_on_board(sm::ContactSolver::Soft, 1e-3);
 }
 
 TEST(ModalWorld, SoftSphereLandsWithoutGainingEnergy)

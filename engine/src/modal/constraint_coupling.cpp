@@ -136,8 +136,12 @@ bool modal_anchor(ModalBody* b, const Quat& rot, const Vec3& local, double h, bo
         if (with_rotation)
             out.rotation += st.q[k] * out.psi[k];
         const modal::ModeStep s = mode_map(*b, k, h);
-        // The host loads (apply_force) are known now; contact loads join in the ModalUpdate stage.
-        out.drift[k] = ((s.a11 - 1.0) * st.q[k] + s.a12 * st.q_dot[k] + s.b1 * st.host_force[k]) / h;
+        // The host loads (apply_force) are known now; contact loads join in the ModalUpdate stage. The
+        // modes spring back to the plastically moved rest shape, q_p (as update_modal_bodies steps them):
+        // measured from q = 0 instead, a moulded body's anchors seemed to move at the spring-back speed,
+        // and contact rows pushed against that phantom motion (a dented clay block slid and spun).
+        const double elastic = st.q[k] - (k < st.q_plastic.size() ? st.q_plastic[k] : 0.0);
+        out.drift[k] = ((s.a11 - 1.0) * elastic + s.a12 * st.q_dot[k] + s.b1 * st.host_force[k]) / h;
         out.gain[k] = s.b1 / h;
     }
     if (!is_finite(out.displacement) || !is_finite(out.rotation)) {

@@ -109,9 +109,14 @@ Quat anchor_orientation(const Side& s)
                : s.p->orientation;
 }
 
+Vec3 rigid_anchor_velocity(const Side& s)
+{
+    return s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
+}
+
 Vec3 anchor_velocity(const Side& s)
 {
-    Vec3 v = s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
+    Vec3 v = rigid_anchor_velocity(s);
     if (s.modal.active())
         v += modal_anchor_velocity(s.modal);
     return v;
@@ -146,6 +151,14 @@ void push_rigid_spin(Side& s, const Vec3& angular_impulse)
         s.v->angular += s.inv_inertia * angular_impulse;
 }
 
+void push_rigid(Side& s, const Vec3& impulse)
+{
+    if (s.v == nullptr || s.inv_mass == 0.0 || frozen_since(s))
+        return;
+    s.v->linear += s.inv_mass * impulse;
+    s.v->angular += s.inv_inertia * (cross(s.r, impulse) + Vec3{}); // as push() adds it, to the bit
+}
+
 void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
 {
     if (s.modal.active())
@@ -156,8 +169,11 @@ void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
     s.v->angular += s.inv_inertia * (cross(s.r, impulse) + angular_impulse);
 }
 
-// K = (1/ma + 1/mb)·I − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]× + Σ φφᵀ over both bodies' modes.
-Mat3 point_mass_inverse(const Side& a, const Side& b)
+namespace
+{
+
+// K = (1/ma + 1/mb)·I − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]× (+ Σ φφᵀ over both bodies' modes).
+Mat3 point_mass_inverse(const Side& a, const Side& b, bool with_modes)
 {
     Mat3 k = Mat3::diagonal({1, 1, 1});
     for (int i = 0; i < 3; ++i)
@@ -165,10 +181,22 @@ Mat3 point_mass_inverse(const Side& a, const Side& b)
     for (const Side* s : {&a, &b}) {
         if (s->inv_mass > 0.0)
             k = add_scaled(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
-        if (s->modal.active())
+        if (with_modes && s->modal.active())
             k = add_scaled(k, modal_anchor_inverse_mass(s->modal), 1.0);
     }
     return k;
+}
+
+} // namespace
+
+Mat3 point_mass_inverse(const Side& a, const Side& b)
+{
+    return point_mass_inverse(a, b, true);
+}
+
+Mat3 rigid_point_mass_inverse(const Side& a, const Side& b)
+{
+    return point_mass_inverse(a, b, false);
 }
 
 Mat3 anchor_inertia_inverse(const Side& a, const Side& b)

@@ -31,12 +31,16 @@ void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
 [[nodiscard]] Quat anchor_orientation(const Side& s);
 /// Velocity of the anchor point [m/s], modes included.
 [[nodiscard]] Vec3 anchor_velocity(const Side& s);
+/// Velocity of the anchor point from the body's rigid motion alone [m/s].
+[[nodiscard]] Vec3 rigid_anchor_velocity(const Side& s);
 /// The body's spin [rad/s] (rigid only: joint limits and friction act on the parts).
 [[nodiscard]] Vec3 angular_velocity(const Side& s);
 /// Spin of the material at the anchor [rad/s], modes included (welds).
 [[nodiscard]] Vec3 anchor_spin(const Side& s);
 /// Adds an impulse J at the anchor and an angular impulse L [N·m·s] to the body and its modes.
 void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse);
+/// An impulse J [N·s] at the anchor on the rigid body only, not its modes (contact friction).
+void push_rigid(Side& s, const Vec3& impulse);
 /// An angular impulse on the rigid body only (joint limits, joint friction).
 void push_rigid_spin(Side& s, const Vec3& angular_impulse);
 /// Whether push() and push_rigid_spin() change anything on this side: a dynamic body's velocity or a
@@ -47,6 +51,8 @@ void push_rigid_spin(Side& s, const Vec3& angular_impulse);
 }
 /// K = anchor velocity change of a relative to b per unit impulse [1/kg] (rigid and modal).
 [[nodiscard]] Mat3 point_mass_inverse(const Side& a, const Side& b);
+/// The same without the modes' part [1/kg]: the rigid bodies' alone.
+[[nodiscard]] Mat3 rigid_point_mass_inverse(const Side& a, const Side& b);
 /// Spin change of b relative to a per unit angular impulse [1/(kg·m²)] (rigid and modal).
 [[nodiscard]] Mat3 anchor_inertia_inverse(const Side& a, const Side& b);
 /// Inverse of a symmetric 3×3 by cofactors; false when (nearly) singular.
