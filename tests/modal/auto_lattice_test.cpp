@@ -93,7 +93,7 @@ TEST(AutoLattice, StopsAtTheDegreeOfFreedomCapAndSaysSo)
 
 TEST(AutoLattice, TheRunReportsTheChosenLatticeAndAnExplicitOneIsKept)
 {
-    // On the penalty solver, where the bound was measured; on the soft one the estimate is 3.3e-5 m.
+    // On the penalty solver, where the bound was measured; on the soft one the estimate is 4.0e-5 m.
     auto activity = [](const char* lattice) {
         const std::string text =
             std::string(
