@@ -48,9 +48,28 @@ void swing_twist(const Quat& r, const Vec3& axis, Vec3& out_swing, double& out_t
     out_swing = rotation_vector(r * conjugate(twist));
 }
 
-Quat orientation_of(const Side& s)
+// Joint limits and joint friction turn the material at the anchor: on a modal body the modes' rotation
+// there too (ψ, as a weld holds it), else a limit held the body's frame while its modes bent past it.
+bool is_modal(const Side& s)
 {
-    return s.p == nullptr ? Quat{} : s.p->orientation;
+    return s.modal.active() && !s.modal.psi.empty();
+}
+
+// An angular impulse L [N·m·s] on the side's material at the anchor.
+void push_spin(Side& s, const Vec3& angular_impulse)
+{
+    if (is_modal(s))
+        push(s, Vec3{}, angular_impulse);
+    else
+        push_rigid_spin(s, angular_impulse);
+}
+
+// Spin change of b relative to a per unit angular impulse about unit `axis` [1/(kg·m²)].
+double inverse_inertia_along(const Side& a, const Side& b, const Vec3& axis)
+{
+    if (is_modal(a) || is_modal(b))
+        return dot(axis, anchor_inertia_inverse(a, b) * axis);
+    return dot(axis, a.inv_inertia * axis) + dot(axis, b.inv_inertia * axis);
 }
 
 // Joint limits start acting this far before the limit [rad] (speculatively, see solve_angular).
@@ -64,11 +83,11 @@ void apply_row(Row& r, double sign)
     push(r.a, sign * r.impulse, sign * -1.0 * r.ang_impulse);
     push(r.b, sign * -1.0 * r.impulse, sign * r.ang_impulse);
     for (int i = 0; i < 2; ++i) {
-        push_rigid_spin(r.a, sign * r.limit_impulse[i] * r.limit_axis[i]);
-        push_rigid_spin(r.b, -sign * r.limit_impulse[i] * r.limit_axis[i]);
+        push_spin(r.a, sign * r.limit_impulse[i] * r.limit_axis[i]);
+        push_spin(r.b, -sign * r.limit_impulse[i] * r.limit_axis[i]);
     }
-    push_rigid_spin(r.a, -sign * r.friction_impulse);
-    push_rigid_spin(r.b, sign * r.friction_impulse);
+    push_spin(r.a, -sign * r.friction_impulse);
+    push_spin(r.b, sign * r.friction_impulse);
 }
 
 void solve_linear(Row& r, const ConstraintDef& d)
@@ -102,7 +121,7 @@ void solve_angular(Row& r)
         if (!r.limit_active[i])
             continue;
         const Vec3& axis = r.limit_axis[i];
-        const double rate = dot(angular_velocity(r.b) - angular_velocity(r.a), axis);
+        const double rate = dot(anchor_spin(r.b) - anchor_spin(r.a), axis);
         // Impulse on b against the axis; accumulated ≥ 0 so the limit pushes back but never pulls.
         // Past the limit it is the soft spring; short of it, only the approach that would cross the
         // limit within this substep is removed (speculative, as for contact), so a joint resting at
@@ -115,8 +134,8 @@ void solve_angular(Row& r)
         const double total = std::max(0.0, r.limit_impulse[i] + want);
         const double dl = total - r.limit_impulse[i];
         r.limit_impulse[i] = total;
-        push_rigid_spin(r.a, dl * axis);
-        push_rigid_spin(r.b, -dl * axis);
+        push_spin(r.a, dl * axis);
+        push_spin(r.b, -dl * axis);
     }
 }
 
@@ -163,7 +182,9 @@ void setup_friction(Row& r, double rate, double h)
         return;
     if (!invert(add_scaled(Mat3{}, pivot_inertia, rate * h), compliance))
         return;
-    if (!invert(add_scaled(add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0), compliance, 1.0), mass))
+    const Mat3 k = is_modal(r.a) || is_modal(r.b) ? anchor_inertia_inverse(r.a, r.b)
+                                                  : add_scaled(r.a.inv_inertia, r.b.inv_inertia, 1.0);
+    if (!invert(add_scaled(k, compliance, 1.0), mass))
         return;
     r.has_friction = true;
     r.friction_compliance = compliance;
@@ -174,11 +195,11 @@ void solve_friction(Row& r)
 {
     if (!r.has_friction)
         return;
-    const Vec3 spin = angular_velocity(r.b) - angular_velocity(r.a);
+    const Vec3 spin = anchor_spin(r.b) - anchor_spin(r.a);
     const Vec3 dl = -1.0 * (r.friction_mass * (spin + r.friction_compliance * r.friction_impulse));
     r.friction_impulse += dl;
-    push_rigid_spin(r.a, -1.0 * dl);
-    push_rigid_spin(r.b, dl);
+    push_spin(r.a, -1.0 * dl);
+    push_spin(r.b, dl);
 }
 
 // The linear row: the anchors' gap and its effective mass (along the axis for a distance constraint).
@@ -209,7 +230,7 @@ void add_limit(Row& r, ConstraintState& st, int slot, const Vec3& axis_w, double
     if (excess <= -k_limit_margin)
         return;
     st.error.angular = std::max(st.error.angular, excess);
-    const double k_inv = dot(axis_w, r.a.inv_inertia * axis_w) + dot(axis_w, r.b.inv_inertia * axis_w);
+    const double k_inv = inverse_inertia_along(r.a, r.b, axis_w);
     if (!(k_inv > 0.0))
         return;
     r.limit_active[slot] = true;
@@ -222,7 +243,7 @@ void add_limit(Row& r, ConstraintState& st, int slot, const Vec3& axis_w, double
 void prepare_limits(Row& r, const ConstraintModel& c, ConstraintState& st)
 {
     const ConstraintDef& d = c.def;
-    const Quat qa = orientation_of(r.a), qb = orientation_of(r.b);
+    const Quat qa = anchor_orientation(r.a), qb = anchor_orientation(r.b);
     const Quat rel = conjugate(qa) * qb * conjugate(c.rest_relative); // a's frame
     Vec3 swing{};
     double twist = 0.0;
@@ -252,10 +273,13 @@ bool prepare(Row& r, Registry& bodies, double h)
     const ConstraintModel& c = *r.model;
     ConstraintState& st = *r.state;
     const ConstraintDef& d = c.def;
-    // A weld holds the material's orientation at the anchors, so it needs the modes' rotation there.
+    // A weld holds the material's orientation at the anchors, and limits and joint friction turn it, so
+    // they need the modes' rotation there.
     const bool weld = d.type == ConstraintType::Weld;
-    make_side(bodies, d.a, c.local_a, h, weld, r.a);
-    make_side(bodies, d.b, c.local_b, h, weld, r.b);
+    const bool limits = d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0);
+    const bool material_rotation = weld || limits || d.angular_damping > 0.0;
+    make_side(bodies, d.a, c.local_a, h, material_rotation, r.a);
+    make_side(bodies, d.b, c.local_b, h, material_rotation, r.b);
     if (r.a.m == nullptr)
         return false;
     r.soft = make_soft(2.0 * M_PI * d.frequency_hz, d.damping_ratio, h);
@@ -267,7 +291,7 @@ bool prepare(Row& r, Registry& bodies, double h)
             rotation_vector(anchor_orientation(r.b) * conjugate(anchor_orientation(r.a) * c.rest_relative));
         st.error.angular = length(r.theta);
         r.has_ang_mass = invert(anchor_inertia_inverse(r.a, r.b), r.ang_mass);
-    } else if (d.type == ConstraintType::Point && (d.swing_limit >= 0.0 || d.twist_limit >= 0.0)) {
+    } else if (limits) {
         prepare_limits(r, c, st);
     }
     if (d.angular_damping > 0.0)
