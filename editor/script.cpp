@@ -542,6 +542,29 @@ void run_modes(const ActionContext& c)
         c.log << "; mode " << r.animating + 1 << " animated";
 }
 
+/// Runs the Speed / accuracy plot's sweep ("seconds" simulated per run) and waits for it; logs every
+/// point and which one the current dt and substeps are.
+void run_trade(const ActionContext& c)
+{
+    const double seconds = number(c.action, c.where, "seconds", c.ui.trade_seconds);
+    if (!(seconds > 0.0) || seconds > 3600.0)
+        fail(c.where + "/seconds", "expected seconds in (0, 3600], found " + std::to_string(seconds));
+    c.ui.trade_seconds = seconds;
+    check(c.ui.start_trade(), c.where);
+    c.ui.trade.wait();
+    const TradeResult r = c.ui.trade.result();
+    if (!r.error.empty())
+        fail(c.where, r.error);
+    const WorldDef& w = c.session.scene().world;
+    const int marked = find_trade_point(r.points, w.dt, w.substep_count);
+    c.log << " " << r.points.size() << " points (knob value: ms per simulated s, error m):";
+    for (const TradePoint& p : r.points)
+        c.log << " " << p.knob << " " << p.value << ": " << p.ms_per_sim_s << ", " << p.error_m << ";";
+    if (marked >= 0)
+        c.log << " current " << r.points[static_cast<size_t>(marked)].knob << " "
+              << r.points[static_cast<size_t>(marked)].value;
+}
+
 /// Starts a mode animation ("mode", 1 = lowest) or ends it ("restore": true).
 void run_animate(const ActionContext& c)
 {
@@ -714,6 +737,7 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"resize", {{"width", "height"}, run_resize}},
     {"save", {{"file", "state"}, run_save}},
     {"modes", {{"body"}, run_modes}},
+    {"trade", {{"seconds"}, run_trade}},
     {"animate", {{"body", "mode", "restore"}, run_animate}},
 };
 

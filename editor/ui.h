@@ -8,6 +8,7 @@
 #include "gizmo.h"
 #include "input.h"
 #include "session.h"
+#include "trade.h"
 
 #include <functional>
 #include <map>
@@ -65,6 +66,14 @@ struct ModesReadout {
 };
 /// What the Modes section shows for `body` now (a script's `modes` action logs the same).
 [[nodiscard]] ModesReadout modes_readout(const EditorSession& session, const std::string& body);
+
+/// What the Speed / accuracy plot showed in its last frame.
+struct TradeReadout {
+    bool shown = false; ///< Its section was open with a scene.
+    size_t points = 0;  ///< Configurations plotted [-].
+    int marked = -1;    ///< The point of the scene's current dt and substeps, or −1.
+    std::string status; ///< The line above the plot ("running", the failure, or what it shows).
+};
 
 /// A rectangle of the display [px], top-left origin.
 struct ScreenRect {
@@ -148,6 +157,19 @@ class EditorUi
     void select_body(const std::string& name) { m_selected = name; }
     /// The widgets of the last frame.
     [[nodiscard]] const std::vector<WidgetRect>& widgets() const { return m_widgets; }
+    /// The `supermodal` program the Speed / accuracy plot runs for its sweep (default_bench_cli()).
+    std::string bench_cli = default_bench_cli();
+    /// Simulated time per run of that sweep [s].
+    double trade_seconds = 0.5;
+    /// The plot's background sweep, and the dt [s] and substeps it was run for.
+    TradeSweep trade;
+    double trade_dt = 0.0;
+    int trade_substeps = 0;
+    bool trade_seen = false; ///< The plot has shown the finished sweep (scrolled into view once).
+    TradeReadout trade_readout;
+    /// Saves the scene as defined (not its current state) to a file of its own and starts the sweep on
+    /// it; fails when the scene cannot be written or the program not started.
+    Status start_trade();
     /// The last error of an action started from the UI (a refused value, a failed save), or empty.
     [[nodiscard]] const std::string& last_error() const { return m_last_error; }
     /// A windowed host plugs its platform and renderer backends in here: `before_frame` runs just before
@@ -212,6 +234,7 @@ void draw_scene_tree(EditorUi& ui);
 void draw_body_window(EditorUi& ui);
 void draw_controls(EditorUi& ui);
 void draw_speed_accuracy(EditorUi& ui);
-void draw_help(EditorUi& ui); // ui_help.cpp
+void draw_help(EditorUi& ui);                          // ui_help.cpp
+void draw_trade_plot(EditorUi& ui, const WorldDef& w); // ui_trade.cpp, inside Speed / accuracy
 
 } // namespace supermodal::editor

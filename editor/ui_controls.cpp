@@ -169,6 +169,7 @@ void draw_speed_accuracy(EditorUi& ui)
         draw_cost_readout(ui, w);
         draw_modal_readout(ui);
         ImGui::PopItemWidth();
+        draw_trade_plot(ui, w);
     }
     ImGui::End();
 }
