@@ -235,6 +235,10 @@ class EditorUi
     void update_viewport();
 };
 
+/// How the History section shows an edit's value: as written, or for a long array or object its size
+/// ("[7 items]") or name ("{leg_fl}").
+[[nodiscard]] std::string value_summary(const Json& value);
+
 /// Places the next ImGui window on its docked rectangle (every frame: the panels do not float).
 void dock_next_window(const ScreenRect& r);
 

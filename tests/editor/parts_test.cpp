@@ -385,3 +385,29 @@ TEST(EditorParts, DraggingAThumbnailIntoTheViewSetsThePartOnTheSurfaceAndUndoRem
     EXPECT_TRUE(s.scene().constraints.empty());
 }
 #endif
+
+TEST(EditorParts, ScriptAttachByRayAttachesToThePartItHitsAndChecksTo)
+{
+    const std::string setup = R"({"action": "load", "file": "parts_floor.json"},
+        {"action": "add_part", "file": "../../samples/parts/seat.json", "at": [0, 0.445, 0]},
+        {"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0.18, 0.21, 0.18]},
+        {"action": "attach", "body": "leg", )";
+    const std::string down = R"("ray": {"origin": [0.18, 0.3, 0.18], "direction": [0, 1, 0]})";
+    ed::EditorSession s;
+    ed::EditorUi ui(s, 1280, 720);
+    // From inside the leg upwards, the first surface the ray enters is the seat's underside.
+    std::string log;
+    ed::ScriptOutcome o = run(setup + down + "}", s, ui, &log);
+    ASSERT_EQ(o.failure, ed::ScriptFailure::None) << o.error.message() << "\n" << log;
+    ASSERT_EQ(s.scene().constraints.size(), 1u);
+    EXPECT_EQ(s.scene().constraints[0].body_a, "seat");
+    EXPECT_EQ(s.scene().constraints[0].def.name, "leg_joint");
+    // A ray that hits another part than "to" is a failed check (status 1), and nothing is made.
+    ed::EditorSession s2;
+    ed::EditorUi ui2(s2, 1280, 720);
+    o = run(setup + R"("to": "floor", )" + down + "}", s2, ui2);
+    EXPECT_EQ(o.failure, ed::ScriptFailure::CheckFailed);
+    EXPECT_NE(o.error.message().find("/actions/3/to: the ray hits \"seat\", not \"floor\""), std::string::npos)
+        << o.error.message();
+    EXPECT_TRUE(s2.scene().constraints.empty());
+}
