@@ -225,7 +225,7 @@ void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t mods)
         ui.gizmo.snap = !ui.gizmo.snap;
         break;
     case EditorKey::Escape:
-        ui.gizmo_drag.reset(); // a gizmo drag is dropped: nothing applied
+        ui.gizmo_drag.reset();     // a gizmo drag is dropped: nothing applied
         ui.parts.carrying.clear(); // so is a part carried or armed, and Attach
         ui.parts.armed.clear();
         ui.parts.attach_armed = false;

@@ -28,7 +28,7 @@ struct EditorArgs {
     std::vector<int> size{1280, 720};
     bool quiet = false;
     std::string parts = SUPERMODAL_EDITOR_PARTS_DIR; ///< The Parts panel's folder.
-    std::string thumbnail_cache;                    ///< Empty: the user's cache folder.
+    std::string thumbnail_cache;                     ///< Empty: the user's cache folder.
 };
 
 /// $XDG_CACHE_HOME/supermodal/thumbnails, else ~/.cache/supermodal/thumbnails; empty without either.
@@ -119,9 +119,11 @@ int main(int argc, char** argv)
     app.add_option("--screenshot", a.screenshot,
                    "PNG of the editor after the script (in a window: its framebuffer, then it closes)");
     app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
-    app.add_option("--parts", a.parts, "Folder of part files for the Parts panel (default: the samples' parts)");
-    app.add_option("--thumbnail-cache", a.thumbnail_cache,
-                   "Folder of cached part thumbnails (default: $XDG_CACHE_HOME or ~/.cache, supermodal/thumbnails)");
+    app.add_option("--parts", a.parts,
+                   "Folder of part files for the Parts panel (default: the samples' parts)");
+    app.add_option(
+        "--thumbnail-cache", a.thumbnail_cache,
+        "Folder of cached part thumbnails (default: $XDG_CACHE_HOME or ~/.cache, supermodal/thumbnails)");
     app.add_option("scene", a.scene, "Scene to load first (format v1)");
     app.add_flag("-q,--quiet", a.quiet, "No per-action log");
     app.set_version_flag("--version", std::string("supermodal ") + supermodal::version(),

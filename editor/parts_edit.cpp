@@ -41,12 +41,11 @@ Result<Scene> read_part(const PartDef& def, const std::string& source)
 {
     if (!is_finite(def.position) || !is_finite(def.orientation))
         return Error{"", "position", "expected finite numbers"};
-    const Json include = {
-        {"file", std::filesystem::absolute(def.file).string()},
-        {"prefix", def.prefix},
-        {"position", vec_json(def.position)},
-        {"orientation", Json::array({def.orientation.w, def.orientation.x, def.orientation.y,
-                                     def.orientation.z})}};
+    const Json include = {{"file", std::filesystem::absolute(def.file).string()},
+                          {"prefix", def.prefix},
+                          {"position", vec_json(def.position)},
+                          {"orientation", Json::array({def.orientation.w, def.orientation.x,
+                                                       def.orientation.y, def.orientation.z})}};
     Result<Scene> part = parse_scene(Json{{"include", Json::array({include})}}.dump(), source);
     if (!part)
         return Error{"", "file", def.file + ": " + part.error().what};

@@ -21,11 +21,11 @@ struct ThumbnailDef {
 
 /// One part file of the library.
 struct PartEntry {
-    std::string path;      ///< The file.
-    std::string label;     ///< Its name without ".json" (what the panel shows).
-    uint64_t hash = 0;     ///< FNV-1a 64 of the file's bytes: the disk cache's key.
-    int width = 0;         ///< Thumbnail size [px]; 0 until drawn (or when it cannot be).
-    int height = 0;        ///< [px]
+    std::string path;          ///< The file.
+    std::string label;         ///< Its name without ".json" (what the panel shows).
+    uint64_t hash = 0;         ///< FNV-1a 64 of the file's bytes: the disk cache's key.
+    int width = 0;             ///< Thumbnail size [px]; 0 until drawn (or when it cannot be).
+    int height = 0;            ///< [px]
     std::vector<uint8_t> rgba; ///< Thumbnail pixels, rows top to bottom, 4 bytes each.
     bool from_cache = false;   ///< Read from the disk cache instead of drawn.
     std::string error;         ///< Why it has no thumbnail (an invalid file, no renderer); empty if fine.

@@ -689,7 +689,8 @@ void check_keyed(const ActionContext& c, const Error& e)
 /// Exactly one of "at" (a world point) and a ray ("ray" or the pixel "x", "y").
 bool at_or_ray(const ActionContext& c)
 {
-    const int given = int(c.action.contains("at")) + int(c.action.contains("ray")) + int(c.action.contains("x"));
+    const int given =
+        int(c.action.contains("at")) + int(c.action.contains("ray")) + int(c.action.contains("x"));
     if (given != 1)
         fail(c.where, R"(expected one of "at" [x, y, z], "ray" or the pixel "x", "y")");
     return c.action.contains("at");
@@ -709,7 +710,8 @@ void run_parts(const ActionContext& c)
         def.cache_dir = (c.base_dir / text(c.action, c.where, "cache")).string();
     const std::filesystem::path folder = c.base_dir / text(c.action, c.where, "folder");
     if (const Status status = c.ui.parts_library.scan(folder.string(), def); !status)
-        check_keyed(c, Error{"", status.error().where == "size" ? "size" : "folder", status.error().message()});
+        check_keyed(c,
+                    Error{"", status.error().where == "size" ? "size" : "folder", status.error().message()});
     const int drawn = c.ui.parts_library.render_pending();
     c.log << " " << folder.string() << ": " << c.ui.parts_library.entries().size() << " parts, " << drawn
           << " drawn";
@@ -730,8 +732,8 @@ void run_add_part(const ActionContext& c)
         if (!q.is_array() || q.size() != 4 || !std::all_of(q.begin(), q.end(), [](const Json& v) {
                 return v.is_number() && std::isfinite(v.get<double>());
             }))
-            fail(c.where + "/orientation", "expected a quaternion [w, x, y, z] of finite numbers, found " +
-                                               kind_of(q));
+            fail(c.where + "/orientation",
+                 "expected a quaternion [w, x, y, z] of finite numbers, found " + kind_of(q));
         const Quat raw{q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()};
         if (!(raw.w * raw.w + raw.x * raw.x + raw.y * raw.y + raw.z * raw.z > 0.0))
             fail(c.where + "/orientation", "expected a quaternion that is not all zero");
@@ -747,7 +749,8 @@ void run_add_part(const ActionContext& c)
     if (!added)
         check_keyed(c, added.error());
     c.ui.select_body(*added);
-    c.log << " " << *added << " at " << vec_text(body_position(c.session.world(), find_body(c.session.world(), *added)));
+    c.log << " " << *added << " at "
+          << vec_text(body_position(c.session.world(), find_body(c.session.world(), *added)));
 }
 
 ConstraintType constraint_type(const ActionContext& c)
@@ -838,7 +841,8 @@ const std::map<std::string, ActionSpec, std::less<>> k_actions = {
     {"animate", {{"body", "mode", "restore"}, run_animate}},
     {"parts", {{"folder", "size", "cache"}, run_parts}},
     {"add_part", {{"file", "at", "ray", "x", "y", "orientation", "name", "prefix"}, run_add_part}},
-    {"attach", {{"body", "to", "at", "ray", "x", "y", "type", "frequency", "damping_ratio", "name"}, run_attach}},
+    {"attach",
+     {{"body", "to", "at", "ray", "x", "y", "type", "frequency", "damping_ratio", "name"}, run_attach}},
     {"detach", {{"body"}, run_detach}},
 };
 

@@ -112,14 +112,14 @@ struct PartDef {
 
 /// A constraint made between two parts at a picked surface point (the Parts panel's Attach).
 struct AttachDef {
-    std::string body;             ///< The part attached (the constraint's b).
-    std::string to;               ///< The part it is attached to (a).
-    Vec3 point{};                 ///< The picked point, world [m]: each side's anchor is the direction from
-                                  ///< its shape origin through it, so it stays on the surface on a resize.
+    std::string body; ///< The part attached (the constraint's b).
+    std::string to;   ///< The part it is attached to (a).
+    Vec3 point{};     ///< The picked point, world [m]: each side's anchor is the direction from
+                      ///< its shape origin through it, so it stays on the surface on a resize.
     ConstraintType type = ConstraintType::Weld;
-    double frequency = 200.0;     ///< [Hz]: stiff, as the chair's legs (light parts carrying heavy ones).
-    double damping_ratio = 1.0;   ///< [-], critical.
-    std::string name;             ///< Empty: "<body>_joint", made unique.
+    double frequency = 200.0;   ///< [Hz]: stiff, as the chair's legs (light parts carrying heavy ones).
+    double damping_ratio = 1.0; ///< [-], critical.
+    std::string name;           ///< Empty: "<body>_joint", made unique.
 };
 
 /// `def` with its components rounded to the steps when def.snap (a snapped scale is at least one step).

@@ -96,7 +96,8 @@ Status EditorSession::transform(std::string_view body, const TransformDef& def, 
     std::vector<std::pair<std::string, Json>> parts;
     if (t.scale != Vec3{1.0, 1.0, 1.0}) {
         const Vec3& r = sb.def.shape.radii;
-        parts.emplace_back(at + "/shape/radii", vec_json({r.x * t.scale.x, r.y * t.scale.y, r.z * t.scale.z}));
+        parts.emplace_back(at + "/shape/radii",
+                           vec_json({r.x * t.scale.x, r.y * t.scale.y, r.z * t.scale.z}));
     }
     if (t.translate != Vec3{})
         parts.emplace_back(at + "/position", vec_json(local_position));

@@ -77,11 +77,11 @@ struct ScreenRect {
 
 /// What the Parts panel is doing with the mouse.
 struct PartsPanelState {
-    std::string carrying;      ///< A part file pressed in the panel: released over the view, it is added.
-    std::string armed;         ///< A part file clicked: the next left press in the view adds it there.
-    bool attach_armed = false; ///< Attach pressed: the next left press on another part attaches the
-                               ///< selected one there.
-    AttachDef attach;          ///< Type, frequency and damping of the constraints Attach makes.
+    std::string carrying;        ///< A part file pressed in the panel: released over the view, it is added.
+    std::string armed;           ///< A part file clicked: the next left press in the view adds it there.
+    bool attach_armed = false;   ///< Attach pressed: the next left press on another part attaches the
+                                 ///< selected one there.
+    AttachDef attach;            ///< Type, frequency and damping of the constraints Attach makes.
     bool render_in_frame = true; ///< frame() draws pending thumbnails (a window draws them itself).
     std::string last_added;      ///< Root body of the last part added from the panel.
 };
@@ -100,12 +100,13 @@ Result<double> part_bottom(const std::string& file, const Quat& orientation);
 
 /// What a left press, held button or release in the 3-D view does for the Parts panel (drops a carried
 /// or armed part, attaches); true when it took the event.
-bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, bool left_pressed, bool left_down);
+bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, bool left_pressed,
+                       bool left_down);
 
-/// Where the panels dock for a display: a left column (Scene over Parts over Run) and a right column (Body over
-/// Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720
-/// display; each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies
-/// the columns' pixel limits as it does the fonts.
+/// Where the panels dock for a display: a left column (Scene over Parts over Run) and a right column (Body
+/// over Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720 display;
+/// each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies the columns'
+/// pixel limits as it does the fonts.
 struct PanelLayout {
     ScreenRect scene, parts, run, body, speed;
 };

@@ -165,7 +165,8 @@ Result<std::string> drop_part(EditorSession& session, const Ray& ray, PartDef de
     return session.add_part(def);
 }
 
-bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, bool left_pressed, bool left_down)
+bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, bool left_pressed,
+                       bool left_down)
 {
     PartsPanelState& p = ui.parts;
     const ScreenRect& v = ui.viewport();

@@ -192,7 +192,8 @@ struct WindowHost {
             glfwWaitEventsTimeout(0.1); // minimised: wait for it to come back
             return;
         }
-        ui.parts_library.render_pending(); // renderers of their own: before the window's context is made current
+        ui.parts_library
+            .render_pending(); // renderers of their own: before the window's context is made current
         if (session.has_world()) {
             apply_scene_looks(renderer, session.scene(), session.world());
             // Only a failure is reported: a success would clear the error of a widget's action.

@@ -11,11 +11,11 @@
 
 #include <array>
 #include <cmath>
-#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace sm = supermodal;
@@ -37,7 +37,8 @@ std::string read_text(const std::string& path)
 }
 
 /// Runs script text from tests/editor/ (so its file names resolve as in the script files).
-ed::ScriptOutcome run(const std::string& actions, ed::EditorSession& s, ed::EditorUi& ui, std::string* log_out = nullptr)
+ed::ScriptOutcome run(const std::string& actions, ed::EditorSession& s, ed::EditorUi& ui,
+                      std::string* log_out = nullptr)
 {
     std::ostringstream log;
     ed::ScriptOutcome o = ed::run_script_text(R"({"actions": [)" + actions + "]}", "test.json",
@@ -235,21 +236,25 @@ TEST(EditorParts, BadArgumentsNameTheActionAndKeyAndChangeNothing)
     const size_t edits = before.history().size(); // the seat's add: its material, then its body
     const std::pair<std::string, std::string> cases[] = {
         {R"({"action": "add_part", "at": [0, 1, 0]})", "/actions/2: missing required key \"file\""},
-        {R"({"action": "add_part", "file": "../../samples/parts/nope.json", "at": [0, 1, 0]})", "/actions/2/file"},
+        {R"({"action": "add_part", "file": "../../samples/parts/nope.json", "at": [0, 1, 0]})",
+         "/actions/2/file"},
         {R"({"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0, 1, 0], "x": 5, "y": 5})",
          "/actions/2: expected one of"},
-        {R"({"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0, "a", 0]})", "/actions/2/at/1"},
+        {R"({"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0, "a", 0]})",
+         "/actions/2/at/1"},
         {R"({"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0, 1, 0], "name": "seat"})",
          "/actions/2/name"},
         {R"({"action": "add_part", "file": "../../samples/parts/leg.json", "at": [0, 1, 0], "orientation": [0, 0, 0, 0]})",
          "/actions/2/orientation"},
-        {R"({"action": "attach", "body": "seat", "to": "floor", "at": [0, 0, 0]})", "/actions/2/to: \"floor\" is a plane"},
+        {R"({"action": "attach", "body": "seat", "to": "floor", "at": [0, 0, 0]})",
+         "/actions/2/to: \"floor\" is a plane"},
         {R"({"action": "attach", "body": "seat", "to": "seat", "at": [0, 0, 0]})", "/actions/2/to"},
         {R"({"action": "attach", "body": "nobody", "to": "seat", "at": [0, 0, 0]})", "/actions/2/body"},
         {R"({"action": "attach", "body": "seat", "at": [0, 0, 0]})", "/actions/2: expected \"to\""},
         {R"({"action": "attach", "body": "seat", "to": "seat", "at": [0, 0, 0], "frequency": -1})",
          "/actions/2/frequency"},
-        {R"({"action": "attach", "body": "seat", "to": "seat", "at": [0, 0, 0], "type": "glue"})", "/actions/2/type"},
+        {R"({"action": "attach", "body": "seat", "to": "seat", "at": [0, 0, 0], "type": "glue"})",
+         "/actions/2/type"},
         {R"({"action": "detach", "body": "seat"})", "/actions/2/body: \"seat\" has no constraint"},
         {R"({"action": "parts", "folder": "nowhere"})", "/actions/2/folder"},
     };
@@ -407,7 +412,8 @@ TEST(EditorParts, ScriptAttachByRayAttachesToThePartItHitsAndChecksTo)
     ed::EditorUi ui2(s2, 1280, 720);
     o = run(setup + R"("to": "floor", )" + down + "}", s2, ui2);
     EXPECT_EQ(o.failure, ed::ScriptFailure::CheckFailed);
-    EXPECT_NE(o.error.message().find("/actions/3/to: the ray hits \"seat\", not \"floor\""), std::string::npos)
+    EXPECT_NE(o.error.message().find("/actions/3/to: the ray hits \"seat\", not \"floor\""),
+              std::string::npos)
         << o.error.message();
     EXPECT_TRUE(s2.scene().constraints.empty());
 }
