@@ -120,7 +120,8 @@ int main(int argc, char** argv)
                    "PNG of the editor after the script (in a window: its framebuffer, then it closes)");
     app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
     app.add_option("--parts", a.parts,
-                   "Folder of part files for the Parts panel (default: the samples' parts)");
+                   "Folder of part files for the Parts panel (default: the samples' parts)")
+        ->check(CLI::ExistingDirectory);
     app.add_option(
         "--thumbnail-cache", a.thumbnail_cache,
         "Folder of cached part thumbnails (default: $XDG_CACHE_HOME or ~/.cache, supermodal/thumbnails)");

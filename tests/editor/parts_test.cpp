@@ -11,12 +11,14 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <sys/wait.h>
 
 namespace sm = supermodal;
 namespace ed = supermodal::editor;
@@ -416,4 +418,29 @@ TEST(EditorParts, ScriptAttachByRayAttachesToThePartItHitsAndChecksTo)
               std::string::npos)
         << o.error.message();
     EXPECT_TRUE(s2.scene().constraints.empty());
+}
+
+TEST(EditorParts, TheProgramBuildsTheChairAndRefusesABadPartWithStatus2)
+{
+    const fs::path dir = fs::path(::testing::TempDir()) / "parts_program";
+    fs::create_directories(dir);
+    std::ofstream(dir / "bad.json") << R"({"actions": [{"action": "load", "file": ")" << k_src
+                                    << R"(/tests/editor/parts_floor.json"},
+        {"action": "add_part", "file": ")"
+                                    << k_parts << R"(/leg.json", "at": [0, 1]}]})";
+    const auto status = [&](const std::string& args) {
+        const std::string command =
+            std::string(SM_EDITOR_EXE) + " --headless -q " + args + " 2>" + (dir / "err.txt").string();
+        const int s = std::system(command.c_str());
+        return WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+    };
+    EXPECT_EQ(status("--script " + k_src + "/tests/editor/parts_chair_script.json"), 0)
+        << read_text((dir / "err.txt").string());
+    EXPECT_EQ(status("--script " + (dir / "bad.json").string()), 2);
+    EXPECT_NE(read_text((dir / "err.txt").string()).find("/actions/1/at: expected an array of 3 numbers"),
+              std::string::npos)
+        << read_text((dir / "err.txt").string());
+    EXPECT_EQ(status("--parts /no/such/folder --script " + (dir / "bad.json").string()), 2);
+    EXPECT_NE(read_text((dir / "err.txt").string()).find("--parts"), std::string::npos)
+        << read_text((dir / "err.txt").string());
 }
