@@ -144,6 +144,47 @@ Result<Vec3> anchor_direction(const World& w, Entity e, const Vec3& point, const
     return d;
 }
 
+/// def.name when free, else "<body>_joint" made unique.
+Result<std::string> constraint_name(const Scene& scene, const AttachDef& def)
+{
+    std::set<std::string> names;
+    for (const SceneConstraint& c : scene.constraints)
+        names.insert(c.def.name);
+    if (!def.name.empty() && names.count(def.name) != 0)
+        return Error{"", "name", "a constraint named \"" + def.name + "\" is already in the scene"};
+    return def.name.empty() ? unique_name(def.body + "_joint", names) : def.name;
+}
+
+/// The constraint's JSON: from def.to (a) to def.body (b), direction anchors through the point.
+Result<Json> attach_constraint(const World& w, const AttachDef& def, const std::string& name)
+{
+    Result<Vec3> da = anchor_direction(w, find_body(w, def.to), def.point, def.to);
+    Result<Vec3> db = anchor_direction(w, find_body(w, def.body), def.point, def.body);
+    if (!da || !db)
+        return da ? db.error() : da.error();
+    return Json{{"name", name},
+                {"type", constraint_type_name(def.type)},
+                {"a", def.to},
+                {"b", def.body},
+                {"anchor_a", {{"direction", vec_json(*da)}}},
+                {"anchor_b", {{"direction", vec_json(*db)}}},
+                {"frequency", def.frequency},
+                {"damping_ratio", def.damping_ratio}};
+}
+
+/// The written body as a part of def.to: moved with it, its pose (where the world has it) kept in
+/// that part's frame.
+Json as_part_of(const World& w, Json body, const AttachDef& def)
+{
+    const Entity eb = find_body(w, def.body), et = find_body(w, def.to);
+    const Quat qt = body_orientation(w, et);
+    body["parent"] = def.to;
+    body["position"] = vec_json(inv_rotate(qt, body_position(w, eb) - body_position(w, et)));
+    const Quat q = normalized(conjugate(qt) * body_orientation(w, eb));
+    body["orientation"] = Json::array({q.w, q.x, q.y, q.z});
+    return body;
+}
+
 } // namespace
 
 Result<std::string> EditorSession::attach(const AttachDef& def)
@@ -156,43 +197,20 @@ Result<std::string> EditorSession::attach(const AttachDef& def)
         return ib ? it.error() : ib.error();
     if (Status ok = check_attach(def); !ok)
         return ok.error();
-    const World& w = *m_world;
-    const Entity eb = find_body(w, def.body), et = find_body(w, def.to);
-    Result<Vec3> da = anchor_direction(w, et, def.point, def.to);
-    Result<Vec3> db = anchor_direction(w, eb, def.point, def.body);
-    if (!da || !db)
-        return da ? db.error() : da.error();
-    std::set<std::string> names;
-    for (const SceneConstraint& c : m_scene.constraints)
-        names.insert(c.def.name);
-    if (!def.name.empty() && names.count(def.name) != 0)
-        return Error{"", "name", "a constraint named \"" + def.name + "\" is already in the scene"};
-    const std::string name = def.name.empty() ? unique_name(def.body + "_joint", names) : def.name;
+    Result<std::string> name = constraint_name(m_scene, def);
+    Result<Json> constraint = attach_constraint(*m_world, def, name ? *name : std::string());
+    if (!name || !constraint)
+        return name ? constraint.error() : name.error();
     const Json scene = written(m_scene);
     Json constraints = scene["constraints"];
-    constraints.push_back({{"name", name},
-                           {"type", constraint_type_name(def.type)},
-                           {"a", def.to},
-                           {"b", def.body},
-                           {"anchor_a", {{"direction", vec_json(*da)}}},
-                           {"anchor_b", {{"direction", vec_json(*db)}}},
-                           {"frequency", def.frequency},
-                           {"damping_ratio", def.damping_ratio}});
+    constraints.push_back(*constraint);
     std::vector<std::pair<std::string, Json>> edits;
-    if (m_scene.bodies[*ib].parent.empty() && *it < *ib) {
-        // A part of the part it is attached to: moved with it, its pose kept in that part's frame.
-        Json body = scene["bodies"][*ib];
-        const Quat qt = body_orientation(w, et);
-        body["parent"] = def.to;
-        body["position"] = vec_json(inv_rotate(qt, body_position(w, eb) - body_position(w, et)));
-        const Quat q = normalized(conjugate(qt) * body_orientation(w, eb));
-        body["orientation"] = Json::array({q.w, q.x, q.y, q.z});
-        edits.emplace_back("/bodies/" + std::to_string(*ib), body);
-    }
+    if (m_scene.bodies[*ib].parent.empty() && *it < *ib)
+        edits.emplace_back("/bodies/" + std::to_string(*ib), as_part_of(*m_world, scene["bodies"][*ib], def));
     edits.emplace_back("/constraints", constraints);
     if (Status status = set_joined(edits); !status)
         return status.error();
-    return name;
+    return *name;
 }
 
 Status EditorSession::detach(std::string_view body)

@@ -147,6 +147,38 @@ Result<double> part_bottom(const std::string& file, const Quat& orientation)
     return bottom;
 }
 
+namespace
+{
+
+/// A part dropped from the panel: added where the ray meets the scene, then selected.
+void drop_from_panel(EditorSession& session, EditorUi& ui, const Ray& ray, const std::string& file)
+{
+    PartDef def;
+    def.file = file;
+    Result<std::string> added = drop_part(session, ray, def);
+    ui.report(added ? Status{} : Status{added.error()});
+    if (added)
+        ui.select_body(ui.parts.last_added = *added);
+}
+
+/// Attach's press: the selected part attached to the part under the pointer, at the pressed point.
+void attach_at(EditorSession& session, EditorUi& ui, const Ray& ray)
+{
+    const std::optional<PickHit> hit = session.pick(ray);
+    if (!hit || hit->name == ui.selected_body()) {
+        ui.report(Error{"", "", "attach: press on a surface point of another part"});
+        return;
+    }
+    AttachDef def = ui.parts.attach;
+    def.body = ui.selected_body();
+    def.to = hit->name;
+    def.point = hit->point;
+    Result<std::string> made = session.attach(def);
+    ui.report(made ? Status{} : Status{made.error()});
+}
+
+} // namespace
+
 Result<std::string> drop_part(EditorSession& session, const Ray& ray, PartDef def)
 {
     Vec3 at{};
@@ -170,44 +202,26 @@ bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, boo
 {
     PartsPanelState& p = ui.parts;
     const ScreenRect& v = ui.viewport();
-    const bool in_view = ui.view_input.x() >= v.x0 && ui.view_input.x() < v.x1 && ui.view_input.y() >= v.y0 &&
-                         ui.view_input.y() < v.y1;
-    const auto drop = [&](const std::string& file) {
-        PartDef def;
-        def.file = file;
-        Result<std::string> added = drop_part(session, ray, def);
-        ui.report(added ? Status{} : Status{added.error()});
-        if (added)
-            ui.select_body(p.last_added = *added);
-    };
+    const double x = ui.view_input.x(), y = ui.view_input.y();
+    const bool in_view = x >= v.x0 && x < v.x1 && y >= v.y0 && y < v.y1;
     if (!p.carrying.empty()) {
         if (left_down)
             return true; // still carried
         const std::string file = std::exchange(p.carrying, std::string());
         if (in_view)
-            drop(file);
+            drop_from_panel(session, ui, ray, file);
         return true;
     }
     if (!left_pressed || !in_view)
         return false;
     if (!p.armed.empty()) {
-        drop(std::exchange(p.armed, std::string()));
+        drop_from_panel(session, ui, ray, std::exchange(p.armed, std::string()));
         return true;
     }
     if (!p.attach_armed)
         return false;
     p.attach_armed = false;
-    const std::optional<PickHit> hit = session.pick(ray);
-    if (!hit || hit->name == ui.selected_body()) {
-        ui.report(Error{"", "", "attach: press on a surface point of another part"});
-        return true;
-    }
-    AttachDef def = p.attach;
-    def.body = ui.selected_body();
-    def.to = hit->name;
-    def.point = hit->point;
-    Result<std::string> made = session.attach(def);
-    ui.report(made ? Status{} : Status{made.error()});
+    attach_at(session, ui, ray);
     return true;
 }
 
