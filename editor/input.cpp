@@ -61,13 +61,14 @@ constexpr Shortcut k_shortcuts[] = {
     {"Home", "frames everything"},
     {"Space", "plays or pauses"},
     {"Tab", "hides or shows the panels"},
-    {"Escape", "lets go of a dragged body"},
+    {"Escape", "lets go of a dragged body; cancels a part to drop and Attach"},
     {"Ctrl + Z", "undoes the last edit"},
     {"Ctrl + Shift + Z, Ctrl + Y", "redoes it"},
     {"G / R / E", "gizmo: move / rotate / scale the selected body"},
     {"Q", "hides the gizmo (the left button pulls bodies again)"},
     {"Left drag on a gizmo handle", "moves along, turns about or scales one axis"},
     {"N", "snapping on or off (0.05 m, 15 degrees, 0.1 scale)"},
+    {"Left drag from the Parts panel", "sets the part on the surface under the pointer"},
     {"H, F1", "shows or hides this list"},
 };
 
@@ -224,7 +225,10 @@ void ViewInput::key(EditorKey k, EditorUi& ui, uint8_t mods)
         ui.gizmo.snap = !ui.gizmo.snap;
         break;
     case EditorKey::Escape:
-        ui.gizmo_drag.reset(); // a gizmo drag is dropped: nothing applied
+        ui.gizmo_drag.reset();     // a gizmo drag is dropped: nothing applied
+        ui.parts.carrying.clear(); // so is a part carried or armed, and Attach
+        ui.parts.armed.clear();
+        ui.parts.attach_armed = false;
         if (m_dragging) {
             session.drag_end();
             m_dragging = false;
@@ -300,6 +304,8 @@ void ViewInput::act(EditorSession& session, EditorUi& ui, bool imgui_wants_mouse
     }
     Result<Ray> ray = screen_ray(session, ui, m_x, m_y);
     if (!ray)
+        return;
+    if (parts_view_action(session, ui, *ray, left_pressed, m_left))
         return;
     if (ui.gizmo_drag) {
         gizmo_follow(session, ui, *ui.gizmo_drag, m_x, m_y);

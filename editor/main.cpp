@@ -9,6 +9,7 @@
 #include "window.h"
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -26,7 +27,19 @@ struct EditorArgs {
     std::string script, screenshot, scene;
     std::vector<int> size{1280, 720};
     bool quiet = false;
+    std::string parts = SUPERMODAL_EDITOR_PARTS_DIR; ///< The Parts panel's folder.
+    std::string thumbnail_cache;                     ///< Empty: the user's cache folder.
 };
+
+/// $XDG_CACHE_HOME/supermodal/thumbnails, else ~/.cache/supermodal/thumbnails; empty without either.
+std::string default_thumbnail_cache()
+{
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0')
+        return std::string(xdg) + "/supermodal/thumbnails";
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0')
+        return std::string(home) + "/.cache/supermodal/thumbnails";
+    return {};
+}
 
 /// Without a display a script still runs headless; with neither there is nothing to do. -1 to go on,
 /// else the exit status (the message printed).
@@ -56,6 +69,11 @@ int run_editor(const EditorArgs& a)
     using namespace supermodal::editor;
     EditorSession session;
     EditorUi ui(session, a.size[0], a.size[1]);
+    // Listed now, drawn by the first frame (a missing folder leaves the panel empty: it says so).
+    ThumbnailDef thumbnails;
+    thumbnails.cache_dir = a.thumbnail_cache.empty() ? default_thumbnail_cache() : a.thumbnail_cache;
+    if (!a.parts.empty())
+        (void)ui.parts_library.scan(a.parts, thumbnails);
     if (!a.scene.empty())
         if (supermodal::Status status = session.load(a.scene); !status) {
             std::cerr << status.error().message() << "\n";
@@ -101,6 +119,12 @@ int main(int argc, char** argv)
     app.add_option("--screenshot", a.screenshot,
                    "PNG of the editor after the script (in a window: its framebuffer, then it closes)");
     app.add_option("--size", a.size, "Display size W H [pixels]")->expected(2)->check(CLI::Range(16, 16384));
+    app.add_option("--parts", a.parts,
+                   "Folder of part files for the Parts panel (default: the samples' parts)")
+        ->check(CLI::ExistingDirectory);
+    app.add_option(
+        "--thumbnail-cache", a.thumbnail_cache,
+        "Folder of cached part thumbnails (default: $XDG_CACHE_HOME or ~/.cache, supermodal/thumbnails)");
     app.add_option("scene", a.scene, "Scene to load first (format v1)");
     app.add_flag("-q,--quiet", a.quiet, "No per-action log");
     app.set_version_flag("--version", std::string("supermodal ") + supermodal::version(),

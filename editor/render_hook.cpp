@@ -7,6 +7,7 @@
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
 #include "supermodal/body.h"
 
+#include <GLES3/gl3.h>
 #include <algorithm>
 #include <cmath>
 #include <imgui.h>
@@ -20,16 +21,60 @@ namespace supermodal::editor
 namespace
 {
 
-/// Points every draw command at the font texture the backend has just uploaded: the frame was drawn
-/// headless (texture 0) or for an earlier screenshot's texture. The editor draws no other images.
-void bind_font_texture(ImDrawData& data, ImTextureID font)
+size_t thumbnails_drawn(const PartsLibrary& library)
 {
-    for (int i = 0; i < data.CmdListsCount; ++i)
-        for (ImDrawCmd& cmd : data.CmdLists[i]->CmdBuffer)
-            cmd.TextureId = font;
+    size_t n = 0;
+    for (const PartEntry& e : library.entries())
+        n += e.width > 0 ? 1 : 0;
+    return n;
 }
 
 } // namespace
+
+void ThumbnailTextures::update(const PartsLibrary& library)
+{
+    const size_t drawn = thumbnails_drawn(library);
+    if (library.generation() == m_generation && drawn == m_uploaded && !m_textures.empty())
+        return;
+    release();
+    for (const PartEntry& e : library.entries()) {
+        GLuint t = 0;
+        if (e.width > 0) {
+            glGenTextures(1, &t);
+            glBindTexture(GL_TEXTURE_2D, t);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, e.width, e.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                         e.rgba.data());
+        }
+        m_textures.push_back(t);
+    }
+    m_generation = library.generation();
+    m_uploaded = drawn;
+}
+
+void ThumbnailTextures::bind(void* draw_data, void* font) const
+{
+    ImDrawData& data = *static_cast<ImDrawData*>(draw_data);
+    for (int i = 0; i < data.CmdListsCount; ++i)
+        for (ImDrawCmd& cmd : data.CmdLists[i]->CmdBuffer) {
+            const int k = thumbnail_index(cmd.TextureId, m_textures.size());
+            if (k >= 0)
+                cmd.TextureId = reinterpret_cast<ImTextureID>(static_cast<intptr_t>(m_textures[k]));
+            else if (font != nullptr)
+                cmd.TextureId = font; // drawn headless (texture 0) or for an earlier screenshot's atlas
+        }
+}
+
+void ThumbnailTextures::release()
+{
+    for (unsigned t : m_textures)
+        if (t != 0)
+            glDeleteTextures(1, &t);
+    m_textures.clear();
+    m_uploaded = 0;
+}
 
 PixelRect view_rect(const EditorUi& ui, int width, int height)
 {
@@ -76,6 +121,7 @@ Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, in
     ImDrawData* data = ImGui::GetDrawData(); // the last frame's (ui.frame())
     bool backend = false;
     std::string backend_error;
+    ThumbnailTextures thumbnails;
     const auto overlay = [&] {
         if (data == nullptr || !data->Valid)
             return;
@@ -85,11 +131,13 @@ Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, in
         }
         backend = true;
         ImGui_ImplOpenGL3_NewFrame(); // uploads the font atlas, sets io.Fonts->TexID
-        bind_font_texture(*data, ImGui::GetIO().Fonts->TexID);
+        thumbnails.update(ui.parts_library);
+        thumbnails.bind(data, ImGui::GetIO().Fonts->TexID);
         // The UI was laid out for its display; scale it onto this image.
         data->FramebufferScale = ImVec2(static_cast<float>(width) / data->DisplaySize.x,
                                         static_cast<float>(height) / data->DisplaySize.y);
         ImGui_ImplOpenGL3_RenderDrawData(data);
+        thumbnails.release();
     };
     Image image;
     Status drawn = renderer->render(world, editor_camera(session, ui), image, PoseSource::Interpolated,

@@ -10,6 +10,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
 #include "supermodal/render.h"
@@ -37,6 +38,24 @@ namespace supermodal::editor
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
 /// The 3-D view's rectangle in an image of width × height showing the UI's display (scaled).
 [[nodiscard]] PixelRect view_rect(const EditorUi& ui, int width, int height);
+/// GL textures of the Parts panel's thumbnails in the current GL context, for ImGui's draw commands.
+class ThumbnailTextures
+{
+  public:
+    /// Uploads the library's thumbnails when they changed (a new scan, newly drawn ones).
+    void update(const PartsLibrary& library);
+    /// Points each draw command that shows a thumbnail at its texture (ImGui's OpenGL backend takes
+    /// ImTextureID as a GL name); with a `font`, every other command at the font atlas.
+    void bind(void* draw_data, void* font) const;
+    /// Deletes the textures (their context current).
+    void release();
+
+  private:
+    std::vector<unsigned> m_textures; ///< GL names, 0 for a part without a thumbnail.
+    uint64_t m_generation = 0;
+    size_t m_uploaded = 0; ///< Thumbnails with pixels when last uploaded.
+};
+
 /// The screenshot's pixels (see render_screenshot).
 [[nodiscard]] Result<Image> render_editor_image(const EditorSession& session, EditorUi& ui, int width,
                                                 int height);

@@ -3,6 +3,7 @@
 // UI and the script runner do goes through here, so both behave the same and tests need no pixels.
 #pragma once
 
+#include "supermodal/constraint.h"
 #include "supermodal/entity.h"
 #include "supermodal/math.h"
 #include "supermodal/modal.h"
@@ -100,6 +101,27 @@ struct TransformDef {
     bool snap = false;         ///< Rounds each component of the three to SnapDef's steps first.
 };
 
+/// A part file added to the scene (the Parts panel's drop, a script's "add_part").
+struct PartDef {
+    std::string file;             ///< Scene file of the part (its bodies, constraints and materials).
+    Vec3 position{};              ///< Where the part's origin goes, world [m] (as an include's position).
+    Quat orientation{1, 0, 0, 0}; ///< Turns the part about its origin (as an include's orientation).
+    std::string name;   ///< New name of its root body (the first without a parent); empty: the file's name.
+    std::string prefix; ///< Put before the names of its other bodies and constraints.
+};
+
+/// A constraint made between two parts at a picked surface point (the Parts panel's Attach).
+struct AttachDef {
+    std::string body; ///< The part attached (the constraint's b).
+    std::string to;   ///< The part it is attached to (a).
+    Vec3 point{};     ///< The picked point, world [m]: each side's anchor is the direction from
+                      ///< its shape origin through it, so it stays on the surface on a resize.
+    ConstraintType type = ConstraintType::Weld;
+    double frequency = 200.0;   ///< [Hz]: stiff, as the chair's legs (light parts carrying heavy ones).
+    double damping_ratio = 1.0; ///< [-], critical.
+    std::string name;           ///< Empty: "<body>_joint", made unique.
+};
+
 /// `def` with its components rounded to the steps when def.snap (a snapped scale is at least one step).
 [[nodiscard]] TransformDef snapped(const TransformDef& def, const SnapDef& steps);
 
@@ -154,6 +176,19 @@ class EditorSession
     /// in the world now. Fails, changing nothing, for an unknown body, a plane, a step or value not finite,
     /// or a scale not > 0.
     Status transform(std::string_view body, const TransformDef& def, const SnapDef& steps = {});
+
+    /// Adds the bodies, constraints and materials of a part file as one edit (one undo() removes them
+    /// all). Names that are taken get "_2", "_3", ... Returns the root body's name. Fails, changing
+    /// nothing, for an unreadable or invalid file or a material of the same name defined differently.
+    Result<std::string> add_part(const PartDef& def);
+    /// Makes a constraint from def.to to def.body at the picked point as one edit, with direction anchors
+    /// (where the ray from each shape origin through the point leaves the surface). A body without a
+    /// parent also gets def.to as its parent when def.to comes earlier in the scene (its pose then kept
+    /// in def.to's frame, as a part's). Returns the constraint's name.
+    Result<std::string> attach(const AttachDef& def);
+    /// Removes every constraint on a body and its parent link (its pose then kept in the world frame), as
+    /// one edit. Fails when it has neither.
+    Status detach(std::string_view body);
 
     /// Every edit since the load, in order; the first history_position() of them are applied.
     [[nodiscard]] const std::vector<SceneEdit>& history() const { return m_history; }
@@ -225,6 +260,8 @@ class EditorSession
     /// Rebuilds the world from `edited` at the current poses and velocities, except that the bodies in
     /// `moved` (indices whose scene pose the edit changed) take their edited pose, their parts along.
     Status rebuild_keeping_state(const Scene& edited, const std::vector<size_t>& moved = {});
+    /// set()s of several paths as one edit (joined in the history); all or nothing.
+    Status set_joined(const std::vector<std::pair<std::string, Json>>& edits);
     void apply_loads();
     void attach_step_listener();
     void before_step();

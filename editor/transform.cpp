@@ -93,25 +93,24 @@ Status EditorSession::transform(std::string_view body, const TransformDef& def, 
         local_orientation = normalized(conjugate(qp) * orientation);
     }
     const std::string at = "/bodies/" + std::to_string(index);
-    struct Part {
-        std::string path;
-        Json value;
-    };
-    std::vector<Part> parts;
+    std::vector<std::pair<std::string, Json>> parts;
     if (t.scale != Vec3{1.0, 1.0, 1.0}) {
         const Vec3& r = sb.def.shape.radii;
-        parts.push_back({at + "/shape/radii", vec_json({r.x * t.scale.x, r.y * t.scale.y, r.z * t.scale.z})});
+        parts.emplace_back(at + "/shape/radii",
+                           vec_json({r.x * t.scale.x, r.y * t.scale.y, r.z * t.scale.z}));
     }
     if (t.translate != Vec3{})
-        parts.push_back({at + "/position", vec_json(local_position)});
+        parts.emplace_back(at + "/position", vec_json(local_position));
     if (t.rotate_deg != Vec3{})
-        parts.push_back({at + "/orientation", quat_json(local_orientation)});
-    if (parts.empty())
-        return {}; // nothing to do: no edit recorded
+        parts.emplace_back(at + "/orientation", quat_json(local_orientation));
+    return set_joined(parts); // nothing to do records no edit
+}
 
+Status EditorSession::set_joined(const std::vector<std::pair<std::string, Json>>& edits)
+{
     const size_t start = m_history_position;
-    for (size_t k = 0; k < parts.size(); ++k) {
-        if (Status status = set(parts[k].path, parts[k].value); !status) {
+    for (size_t k = 0; k < edits.size(); ++k) {
+        if (Status status = set(edits[k].first, edits[k].second); !status) {
             // All or nothing: take back the parts already applied and forget them.
             while (m_history_position > start)
                 (void)undo();

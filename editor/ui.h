@@ -7,6 +7,7 @@
 
 #include "gizmo.h"
 #include "input.h"
+#include "parts_library.h"
 #include "session.h"
 #include "trade.h"
 
@@ -83,12 +84,40 @@ struct ScreenRect {
     [[nodiscard]] float area() const { return width() * height(); }
 };
 
-/// Where the panels dock for a display: a left column (Scene over Run) and a right column (Body over
-/// Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720
-/// display; each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies
-/// the columns' pixel limits as it does the fonts.
+/// What the Parts panel is doing with the mouse.
+struct PartsPanelState {
+    std::string carrying;        ///< A part file pressed in the panel: released over the view, it is added.
+    std::string armed;           ///< A part file clicked: the next left press in the view adds it there.
+    bool attach_armed = false;   ///< Attach pressed: the next left press on another part attaches the
+                                 ///< selected one there.
+    AttachDef attach;            ///< Type, frequency and damping of the constraints Attach makes.
+    bool render_in_frame = true; ///< frame() draws pending thumbnails (a window draws them itself).
+    std::string last_added;      ///< Root body of the last part added from the panel.
+};
+
+/// The texture id the Parts panel draws thumbnail k with is k_thumbnail_texture + k: no GL name (a host
+/// maps it to the texture it made of that thumbnail, thumbnail_index() gives k back).
+constexpr intptr_t k_thumbnail_texture = 0x7f000000;
+[[nodiscard]] int thumbnail_index(void* texture_id, size_t count);
+
+/// Adds a part file where `ray` first meets the scene, set on that point: its lowest point (world box,
+/// its origin at the hit) moved up onto it. A ray that hits no body drops it on the plane y = 0.
+/// `def`'s name, prefix and orientation are kept. Returns the root body's name.
+Result<std::string> drop_part(EditorSession& session, const Ray& ray, PartDef def);
+/// The lowest world y [m] of a part file's bodies relative to its origin, turned by `orientation`.
+Result<double> part_bottom(const std::string& file, const Quat& orientation);
+
+/// What a left press, held button or release in the 3-D view does for the Parts panel (drops a carried
+/// or armed part, attaches); true when it took the event.
+bool parts_view_action(EditorSession& session, EditorUi& ui, const Ray& ray, bool left_pressed,
+                       bool left_down);
+
+/// Where the panels dock for a display: a left column (Scene over Parts over Run) and a right column (Body
+/// over Speed / accuracy), narrow enough that the 3-D view between them keeps over 60% of a 1280x720 display;
+/// each panel collapses to its title bar, and Tab hides them all. `scale` (HiDPI) multiplies the columns'
+/// pixel limits as it does the fonts.
 struct PanelLayout {
-    ScreenRect scene, run, body, speed;
+    ScreenRect scene, parts, run, body, speed;
 };
 [[nodiscard]] PanelLayout panel_layout(float display_width, float display_height, float scale = 1.0f);
 
@@ -195,6 +224,9 @@ class EditorUi
     SpeedAccuracyReadout speed_accuracy;
     /// The Body window's Modes section in the last frame.
     ModesReadout modes;
+    /// The part files the Parts panel lists, with their thumbnails.
+    PartsLibrary parts_library;
+    PartsPanelState parts;
     /// Where the Save button writes.
     std::string save_path = "scene_saved.json";
     /// Steps the Step button runs.
@@ -226,6 +258,10 @@ class EditorUi
     void update_viewport();
 };
 
+/// How the History section shows an edit's value: as written, or for a long array or object its size
+/// ("[7 items]") or name ("{leg_fl}").
+[[nodiscard]] std::string value_summary(const Json& value);
+
 /// Places the next ImGui window on its docked rectangle (every frame: the panels do not float).
 void dock_next_window(const ScreenRect& r);
 
@@ -235,6 +271,7 @@ void draw_body_window(EditorUi& ui);
 void draw_controls(EditorUi& ui);
 void draw_speed_accuracy(EditorUi& ui);
 void draw_help(EditorUi& ui);                          // ui_help.cpp
+void draw_parts(EditorUi& ui);                         // ui_parts.cpp
 void draw_trade_plot(EditorUi& ui, const WorldDef& w); // ui_trade.cpp, inside Speed / accuracy
 
 } // namespace supermodal::editor

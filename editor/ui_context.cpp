@@ -141,6 +141,9 @@ void EditorUi::frame(double real_seconds)
 {
     ImGui::SetCurrentContext(m_context);
     ImGuiIO& io = ImGui::GetIO();
+    if (parts.render_in_frame && parts_library.pending())
+        parts_library.render_pending(); // before the frame: a renderer of its own, once per part
+    ImGui::SetCurrentContext(m_context);
     if (before_frame)
         before_frame();
     io.DeltaTime = static_cast<float>(std::max(real_seconds, k_min_ui_delta));
@@ -154,6 +157,7 @@ void EditorUi::frame(double real_seconds)
     speed_accuracy = SpeedAccuracyReadout{};
     if (show_windows) {
         draw_scene_tree(*this);
+        draw_parts(*this);
         draw_body_window(*this);
         draw_controls(*this);
         draw_speed_accuracy(*this);
@@ -241,7 +245,10 @@ PanelLayout panel_layout(float w, float h, float scale)
     const float run = std::min(150.0f * s, 0.4f * h);
     const float body = 0.55f * h;
     PanelLayout l;
-    l.scene = {0, 0, left, h - run};
+    // Parts between Scene and Run: a third of what the column has left, two rows of thumbnails at most.
+    const float parts = std::min(230.0f * s, (h - run) / 3.0f);
+    l.scene = {0, 0, left, h - run - parts};
+    l.parts = {0, h - run - parts, left, h - run};
     l.run = {0, h - run, left, h};
     l.body = {w - right, 0, w, body};
     l.speed = {w - right, body, w, h};
@@ -269,7 +276,7 @@ void EditorUi::update_viewport()
     if (!show_windows)
         return;
     // Each expanded panel closes the view in from its side; a collapsed one is a title bar over it.
-    for (const char* name : {"Scene", "Run", "Body", "Speed / accuracy"}) {
+    for (const char* name : {"Scene", "Parts", "Run", "Body", "Speed / accuracy"}) {
         const ImGuiWindow* win = ImGui::FindWindowByName(name);
         if (win == nullptr || !win->Active || win->Collapsed)
             continue;

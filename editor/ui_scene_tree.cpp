@@ -60,7 +60,7 @@ void draw_history(EditorUi& ui)
         ui.report(session.redo());
     ui.track("Redo");
     for (size_t i = 0; i < history.size(); ++i) {
-        const std::string line = history[i].path + " = " + history[i].after.dump();
+        const std::string line = history[i].path + " = " + value_summary(history[i].after);
         if (i < session.history_position())
             ImGui::TextUnformatted(line.c_str());
         else
@@ -69,6 +69,22 @@ void draw_history(EditorUi& ui)
 }
 
 } // namespace
+
+std::string value_summary(const Json& value)
+{
+    // A whole section (an added part's bodies) would fill the column: its size, or the object's name
+    // (or its keys: the materials' names).
+    if (value.dump().size() <= 40 || !(value.is_array() || value.is_object()))
+        return value.dump();
+    if (value.is_array())
+        return "[" + std::to_string(value.size()) + (value.size() == 1 ? " item]" : " items]");
+    if (value.contains("name") && value["name"].is_string())
+        return "{" + value["name"].get<std::string>() + "}";
+    std::string keys;
+    for (const auto& item : value.items())
+        keys += (keys.empty() ? "" : ", ") + item.key();
+    return "{" + keys + "}";
+}
 
 void draw_scene_tree(EditorUi& ui)
 {

@@ -135,6 +135,7 @@ struct WindowHost {
     EditorUi& ui;
     std::unique_ptr<ViewTexture> view = std::make_unique<ViewTexture>();
     Image image;
+    ThumbnailTextures thumbnails; ///< The Parts panel's, in the window's context.
 
     [[nodiscard]] int image_width() const { return renderer.settings().width; }
     [[nodiscard]] int image_height() const { return renderer.settings().height; }
@@ -191,6 +192,8 @@ struct WindowHost {
             glfwWaitEventsTimeout(0.1); // minimised: wait for it to come back
             return;
         }
+        ui.parts_library
+            .render_pending(); // renderers of their own: before the window's context is made current
         if (session.has_world()) {
             apply_scene_looks(renderer, session.scene(), session.world());
             // Only a failure is reported: a success would clear the error of a widget's action.
@@ -369,7 +372,7 @@ int window_loop(GLFWwindow* window, Renderer renderer, EditorSession& session, E
 {
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
-    WindowHost host{window, std::move(renderer), session, ui, std::make_unique<ViewTexture>(), Image{}};
+    WindowHost host{window, std::move(renderer), session, ui, std::make_unique<ViewTexture>(), Image{}, {}};
     glfwSetWindowUserPointer(window, &host);
     glfwSetCursorPosCallback(window, on_cursor);
     glfwSetMouseButtonCallback(window, on_button);
@@ -378,6 +381,7 @@ int window_loop(GLFWwindow* window, Renderer renderer, EditorSession& session, E
     ImGui::SetCurrentContext(ui.context());
     ImGui_ImplGlfw_InitForOpenGL(window, true); // chains to the callbacks above
     ImGui_ImplOpenGL3_Init("#version 300 es");
+    ui.parts.render_in_frame = false; // drawn in frame(), before the window's context is current
     const InputEvents headless = ui.input;
     ui.input = window_events(host);
     ui.before_frame = [] {
@@ -389,13 +393,17 @@ int window_loop(GLFWwindow* window, Renderer renderer, EditorSession& session, E
         glfwGetFramebufferSize(window, &fw, &fh);
         glViewport(0, 0, fw, fh);
         host.view->blit(fw, fh);
+        host.thumbnails.update(ui.parts_library);
+        host.thumbnails.bind(ImGui::GetDrawData(), nullptr);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     };
     const int status = window_session(host, run);
     ui.before_frame = nullptr;
     ui.after_render = nullptr;
     ui.input = headless;
+    ui.parts.render_in_frame = true;
     host.view.reset(); // its GL objects go before the context does
+    host.thumbnails.release();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     glfwSetWindowUserPointer(window, nullptr);

@@ -52,10 +52,10 @@ TEST(EditorScreenshot, WindowsAreDrawnOverTheViewAndHiddenWindowsLeaveThePlainVi
     sm::Result<sm::Image> with = ed::render_editor_image(session, ui, k_width, k_height);
     ASSERT_TRUE(with) << with.error().message();
 
-    // The four windows' rectangles, as ImGui laid them out in that frame.
+    // The five windows' rectangles, as ImGui laid them out in that frame.
     std::vector<Rect> windows;
     ImGui::SetCurrentContext(ui.context());
-    for (const char* name : {"Scene", "Body", "Run", "Speed / accuracy"}) {
+    for (const char* name : {"Scene", "Parts", "Body", "Run", "Speed / accuracy"}) {
         ImGuiWindow* w = ImGui::FindWindowByName(name);
         ASSERT_NE(w, nullptr) << name;
         ASSERT_TRUE(w->Active) << name;
