@@ -84,6 +84,55 @@ Vec3 relative_velocity(const SoftPoint& p)
     return anchor_velocity(p.a) - anchor_velocity(p.b);
 }
 
+// How a pair's rows read and push their bodies: through the sides, modes included.
+struct AnySides {
+    [[nodiscard]] Vec3 velocity(const SoftPoint& p) const { return relative_velocity(p); }
+    void apply(SoftPoint& p, const Vec3& impulse) const { supermodal::apply(p, impulse); }
+};
+
+// ... or, for two rigid bodies, straight on their velocities: the arithmetic of anchor_velocity() and
+// push() without their calls and checks per row (the rows were a quarter of the rounded-box pile's
+// step through them). Whether a body was frozen since its sides were made is asked once per pair: a
+// body freezes only between the solver's phases (freeze_non_finite), never inside one pass.
+struct RigidSides {
+    bool free_a = false, free_b = false; // dynamic and not frozen since the sides were made
+
+    explicit RigidSides(const SoftPoint& first)
+        : free_a(first.a.v != nullptr && !(first.a.m != nullptr && first.a.m->inv_mass == 0.0)),
+          free_b(first.b.v != nullptr && !(first.b.m != nullptr && first.b.m->inv_mass == 0.0))
+    {
+    }
+    [[nodiscard]] static Vec3 velocity_of(const Side& s)
+    {
+        return s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
+    }
+    [[nodiscard]] Vec3 velocity(const SoftPoint& p) const { return velocity_of(p.a) - velocity_of(p.b); }
+    static void push_on(const Side& s, const Vec3& impulse)
+    {
+        s.v->linear += s.inv_mass * impulse;
+        s.v->angular += s.inv_inertia * (cross(s.r, impulse) + Vec3{}); // as push() with no angular impulse
+    }
+    void apply(SoftPoint& p, const Vec3& impulse) const
+    {
+        if (free_a && p.a.inv_mass != 0.0)
+            push_on(p.a, impulse);
+        const Vec3 on_b = -1.0 * impulse;
+        if (free_b && p.b.inv_mass != 0.0)
+            push_on(p.b, on_b);
+    }
+};
+
+// Whether none of the pair's points has a modal side.
+bool rigid_rows(const SoftPair& sp, const SoftContacts& rows)
+{
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        const SoftPoint& p = rows.points[sp.first + i];
+        if (p.a.modal.active() || p.b.modal.active())
+            return false;
+    }
+    return true;
+}
+
 // The pair's spring rate [rad/s]: a static (or kinematic) partner doubles the frequency, since the
 // point's effective mass is then the moving body's alone.
 double pair_omega(const SoftContactDef& def, double h, bool one_moves)
@@ -179,6 +228,36 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
     return p;
 }
 
+// The point's rows on two rigid bodies whose sides at the pair's first point are `first`: the bodies'
+// terms copied from it (one world inertia per body and pair instead of one per point and side), the
+// arms as contact_side() makes them; the same rows as make_point().
+SoftPoint make_rigid_point(const SoftPoint& first, const ContactPoint& cp)
+{
+    auto side_at = [&](const Side& same) {
+        Side s;
+        s.m = same.m;
+        s.p = same.p;
+        s.v = same.v;
+        s.point = cp.point;
+        s.r = cp.point - same.p->position;
+        s.inv_inertia = same.inv_inertia;
+        s.inv_mass = same.inv_mass;
+        return s;
+    };
+    SoftPoint p;
+    p.a = side_at(first.a);
+    p.b = side_at(first.b);
+    p.normal = cp.normal;
+    tangents(cp.normal, p.tangent);
+    p.separation = -cp.depth;
+    p.depth = cp.depth;
+    const Mat3 k = point_mass_inverse(p.a, p.b);
+    p.normal_mass = inverse_along(k, p.normal);
+    p.tangent_mass[0] = inverse_along(k, p.tangent[0]);
+    p.tangent_mass[1] = inverse_along(k, p.tangent[1]);
+    return p;
+}
+
 // A point's sides and masses made again where it is (a modal side changes every substep).
 void remake_sides(Registry& reg, const BodyPair& pair, SoftPoint& p, double h)
 {
@@ -205,8 +284,12 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
     sp.node_a = sp.node_b = k_no_node;
     std::array<uint32_t, k_max_rows_per_pair> picked{};
     sp.count = static_cast<uint32_t>(pick_rows(points, rests_on_a_patch(ma) || rests_on_a_patch(mb), picked));
+    // Without modes a body's terms are the same at each of the pair's points.
+    const bool rigid = reg.find<ModalBody>(pair.a) == nullptr && reg.find<ModalBody>(pair.b) == nullptr;
     for (size_t i = 0; i < sp.count; ++i)
-        rows.points[sp.first + i] = make_point(reg, pair, points[picked[i]], h);
+        rows.points[sp.first + i] = rigid && i > 0
+                                        ? make_rigid_point(rows.points[sp.first], points[picked[i]])
+                                        : make_point(reg, pair, points[picked[i]], h);
     if (sp.count > 0) {
         const SoftPoint& first = rows.points[sp.first];
         sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
@@ -256,9 +339,10 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
     }
 }
 
-void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
+template <class Sides>
+void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias, const Sides& sides)
 {
-    const double vn = dot(relative_velocity(p), p.normal);
+    const double vn = dot(sides.velocity(p), p.normal);
     double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
     if (p.separation > 0.0) {
         bias = p.separation / h; // apart: only the approach that would close the gap within h is stopped
@@ -269,7 +353,7 @@ void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
     }
     const double d = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
     const double total = std::max(p.normal_impulse + d, 0.0);
-    apply(p, (total - p.normal_impulse) * p.normal);
+    sides.apply(p, (total - p.normal_impulse) * p.normal);
     p.normal_impulse = total;
 }
 
@@ -277,9 +361,9 @@ void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
 // Static friction is a soft constraint on the pair's slip since it last slid (its stick), with the
 // normal spring's coefficients: a velocity-only row lets a resting stack creep at the rate its passes
 // leave unconverged (measured: a column of three boxes at 1/60 s crept 1.5 mm/s), the slip pulls it back.
-void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias)
+template <class Sides> void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias, const Sides& sides)
 {
-    const Vec3 v = relative_velocity(p);
+    const Vec3 v = sides.velocity(p);
     double t[2];
     for (int i = 0; i < 2; ++i) {
         double rate = dot(v, p.tangent[i]), mass_scale = 1.0, impulse_scale = 0.0;
@@ -301,7 +385,7 @@ void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias)
         t0 *= s;
         t1 *= s;
     }
-    apply(p, (t0 - p.tangent_impulse[0]) * p.tangent[0] + (t1 - p.tangent_impulse[1]) * p.tangent[1]);
+    sides.apply(p, (t0 - p.tangent_impulse[0]) * p.tangent[0] + (t1 - p.tangent_impulse[1]) * p.tangent[1]);
     p.tangent_impulse[0] = t0;
     p.tangent_impulse[1] = t1;
 }
@@ -328,14 +412,23 @@ void solve_rolling(SoftPair& sp, SoftContacts& rows)
 }
 
 // Per pair, its normal rows first, so friction is bounded by this pass's normal impulses.
-void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
+template <class Sides>
+void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Sides& sides)
 {
     for (uint32_t i = 0; i < sp.count; ++i)
-        solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias);
+        solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias, sides);
     for (uint32_t i = 0; i < sp.count; ++i)
-        solve_friction(rows.points[sp.first + i], sp, use_bias);
+        solve_friction(rows.points[sp.first + i], sp, use_bias, sides);
     if (sp.rolling > 0.0 && sp.roll_mass.m[0][0] != 0.0)
         solve_rolling(sp, rows);
+}
+
+void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
+{
+    if (sp.count > 0 && rigid_rows(sp, rows))
+        solve_pair_rows(sp, rows, use_bias, RigidSides(rows.points[sp.first]));
+    else
+        solve_pair_rows(sp, rows, use_bias, AnySides{});
 }
 
 // What world_contacts() reports for a solved pair: the impulse-weighted point, the summed force.
