@@ -459,14 +459,23 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
             .point_count = static_cast<int>(sp.count)};
 }
 
+// Each node's place in `nodes` (sorted, no repeats), by node: a table instead of a binary search per
+// lookup (two per pair, twice).
+std::vector<uint32_t> node_places(const std::vector<uint32_t>& nodes)
+{
+    std::vector<uint32_t> place(nodes.empty() ? 0 : static_cast<size_t>(nodes.back()) + 1, 0);
+    for (size_t i = 0; i < nodes.size(); ++i)
+        place[nodes[i]] = static_cast<uint32_t>(i);
+    return place;
+}
+
 // Levels of the contact graph [-]: 1 for a body touching something that takes no impulse (the ground,
 // a kinematic body), n + 1 for one touching a level-n body; 0 where not grounded. Breadth
 // first in pair order, so the result does not depend on threads.
-std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes)
+std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes,
+                                     const std::vector<uint32_t>& place)
 {
-    auto id = [&](uint32_t node) {
-        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
-    };
+    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
     std::vector<uint32_t> start(nodes.size() + 1, 0), edges, level(nodes.size(), 0), queue;
     for (const SoftPair& sp : rows.pairs)
         if (sp.count > 0 && sp.node_a != k_no_node && sp.node_b != k_no_node) {
@@ -527,10 +536,9 @@ void scale_heavy_on_light(SoftContacts& rows)
         return; // no body rests on another
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    auto id = [&](uint32_t node) {
-        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
-    };
-    const std::vector<uint32_t> level = contact_levels(rows, nodes);
+    const std::vector<uint32_t> place = node_places(nodes);
+    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
+    const std::vector<uint32_t> level = contact_levels(rows, nodes, place);
     for (SoftPair& sp : rows.pairs) {
         if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
             continue;
