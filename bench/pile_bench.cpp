@@ -168,10 +168,10 @@ void add_stacked_pile(sm::World& w, int n)
 }
 
 sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks, int substeps,
-                    double sleep_speed = 0.0)
+                    double sleep_speed = 0.0, sm::ContactSolver solver = sm::ContactSolver::Penalty)
 {
     sm::WorldDef def = sm::default_world_def();
-    def.contact.solver = sm::ContactSolver::Penalty; // the solver of docs/bench/pile.csv
+    def.contact.solver = solver; // penalty: the solver of docs/bench/pile.csv
     def.sleep.enabled = sleep_speed > 0.0;
     def.sleep.linear_speed = sleep_speed;
     def.dt = 1.0 / 240.0;
@@ -209,7 +209,7 @@ sm::World make_pile(Shape shape, int n, const std::shared_ptr<TimedTasks>& tasks
     return w;
 }
 
-void BM_Pile(benchmark::State& st, Shape shape)
+void BM_Pile(benchmark::State& st, Shape shape, sm::ContactSolver solver = sm::ContactSolver::Penalty)
 {
     const int n = static_cast<int>(st.range(0));
     const int threads = static_cast<int>(st.range(1));
@@ -220,7 +220,7 @@ void BM_Pile(benchmark::State& st, Shape shape)
     std::array<double, static_cast<size_t>(sm::Stage::Count)> stage_ms{};
     for (auto _ : st) {
         auto tasks = std::make_shared<TimedTasks>(threads);
-        sm::World w = make_pile(shape, n, tasks, substeps);
+        sm::World w = make_pile(shape, n, tasks, substeps, 0.0, solver);
         max_pen = 0.0;
         stage_ms.fill(0.0);
         support_calls = touching_pairs = touching_calls = 0;
@@ -384,3 +384,9 @@ BENCHMARK_CAPTURE(BM_Pile, ellipsoid, Shape::Ellipsoid)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box, Shape::RoundedBox)->Apply(pile_args);
 BENCHMARK_CAPTURE(BM_Pile, ellipsoid_substeps, Shape::Ellipsoid)->Apply(substep_args);
 BENCHMARK_CAPTURE(BM_Pile, rounded_box_stacked, Shape::RoundedBoxStacked)->Apply(pile_args);
+// The rounded boxes on the soft solver (the default; bench/peer_pile's soft rows), one thread.
+BENCHMARK_CAPTURE(BM_Pile, rounded_box_soft, Shape::RoundedBox, sm::ContactSolver::Soft)
+    ->Args({1000, 1, 1})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);

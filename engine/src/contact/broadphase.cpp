@@ -124,6 +124,9 @@ void pairs_in_cells(std::span<const BroadphaseProxy> proxies,
             const BroadphaseProxy& p = proxies[entries[i].proxy];
             for (size_t j = i + 1; j < end; ++j) {
                 const BroadphaseProxy& q = proxies[entries[j].proxy];
+                // The cheap tests of add_pair() first: most boxes sharing a cell do not overlap.
+                if (!may_pair(p, q) || !overlaps(p.box, q.box))
+                    continue;
                 const uint64_t owner = cell_key(cell_coord(std::max(p.box.min.x, q.box.min.x), inv_cell),
                                                 cell_coord(std::max(p.box.min.y, q.box.min.y), inv_cell),
                                                 cell_coord(std::max(p.box.min.z, q.box.min.z), inv_cell));

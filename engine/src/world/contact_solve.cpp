@@ -120,6 +120,66 @@ void set_masses(SoftPoint& p)
     p.tangent_mass[1] = inverse_along(kt, p.tangent[1]);
 }
 
+// How a pair's rows read and push their bodies: through the sides, modes included.
+// Friction reads and pushes the rigid motion alone where a side is modal (apply_friction).
+struct AnySides {
+    [[nodiscard]] Vec3 velocity(const SoftPoint& p) const { return relative_velocity(p); }
+    void apply(SoftPoint& p, const Vec3& impulse) const { supermodal::apply(p, impulse); }
+    [[nodiscard]] Vec3 friction_velocity(const SoftPoint& p) const { return rigid_relative_velocity(p); }
+    void apply_friction(SoftPoint& p, const Vec3& impulse) const
+    {
+        if (p.a.modal.active() || p.b.modal.active())
+            supermodal::apply_friction(p, impulse);
+        else
+            supermodal::apply(p, impulse);
+    }
+};
+
+// ... or, for two rigid bodies, straight on their velocities: the arithmetic of anchor_velocity() and
+// push() without their calls and checks per row (the rows were a quarter of the rounded-box pile's
+// step through them). Whether a body was frozen since its sides were made is asked once per pair: a
+// body freezes only between the solver's phases (freeze_non_finite), never inside one pass.
+struct RigidSides {
+    bool free_a = false, free_b = false; // dynamic and not frozen since the sides were made
+
+    explicit RigidSides(const SoftPoint& first)
+        : free_a(first.a.v != nullptr && !(first.a.m != nullptr && first.a.m->inv_mass == 0.0)),
+          free_b(first.b.v != nullptr && !(first.b.m != nullptr && first.b.m->inv_mass == 0.0))
+    {
+    }
+    [[nodiscard]] static Vec3 velocity_of(const Side& s)
+    {
+        return s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
+    }
+    [[nodiscard]] Vec3 velocity(const SoftPoint& p) const { return velocity_of(p.a) - velocity_of(p.b); }
+    static void push_on(const Side& s, const Vec3& impulse)
+    {
+        s.v->linear += s.inv_mass * impulse;
+        s.v->angular += s.inv_inertia * (cross(s.r, impulse) + Vec3{}); // as push() with no angular impulse
+    }
+    void apply(SoftPoint& p, const Vec3& impulse) const
+    {
+        if (free_a && p.a.inv_mass != 0.0)
+            push_on(p.a, impulse);
+        const Vec3 on_b = -1.0 * impulse;
+        if (free_b && p.b.inv_mass != 0.0)
+            push_on(p.b, on_b);
+    }
+    [[nodiscard]] Vec3 friction_velocity(const SoftPoint& p) const { return velocity(p); }
+    void apply_friction(SoftPoint& p, const Vec3& impulse) const { apply(p, impulse); }
+};
+
+// Whether none of the pair's points has a modal side.
+bool rigid_rows(const SoftPair& sp, const SoftContacts& rows)
+{
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        const SoftPoint& p = rows.points[sp.first + i];
+        if (p.a.modal.active() || p.b.modal.active())
+            return false;
+    }
+    return true;
+}
+
 // The pair's spring rate [rad/s]: a static (or kinematic) partner doubles the frequency, since the
 // point's effective mass is then the moving body's alone.
 double pair_omega(const SoftContactDef& def, double h, bool one_moves)
@@ -238,6 +298,33 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
     return p;
 }
 
+// The point's rows on two rigid bodies whose sides at the pair's first point are `first`: the bodies'
+// terms copied from it (one world inertia per body and pair instead of one per point and side), the
+// arms as contact_side() makes them; the same rows as make_point().
+SoftPoint make_rigid_point(const SoftPoint& first, const ContactPoint& cp)
+{
+    auto side_at = [&](const Side& same) {
+        Side s;
+        s.m = same.m;
+        s.p = same.p;
+        s.v = same.v;
+        s.point = cp.point;
+        s.r = cp.point - same.p->position;
+        s.inv_inertia = same.inv_inertia;
+        s.inv_mass = same.inv_mass;
+        return s;
+    };
+    SoftPoint p;
+    p.a = side_at(first.a);
+    p.b = side_at(first.b);
+    p.normal = cp.normal;
+    tangents(cp.normal, p.tangent);
+    p.separation = -cp.depth;
+    p.depth = cp.depth;
+    set_masses(p);
+    return p;
+}
+
 // A point's sides and masses made again where it is (a modal side changes every substep).
 void remake_sides(Registry& reg, const BodyPair& pair, SoftPoint& p, double h)
 {
@@ -263,8 +350,12 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
     const std::span<uint32_t> out(picked.data(), sp.count); // the rows prepare_soft_contacts set aside
     sp.count = static_cast<uint32_t>(pick_rows(
         points, sp.count > k_max_rows_per_pair || rests_on_a_patch(ma) || rests_on_a_patch(mb), out));
+    // Without modes a body's terms are the same at each of the pair's points.
+    const bool rigid = reg.find<ModalBody>(pair.a) == nullptr && reg.find<ModalBody>(pair.b) == nullptr;
     for (size_t i = 0; i < sp.count; ++i)
-        rows.points[sp.first + i] = make_point(reg, pair, points[picked[i]], h);
+        rows.points[sp.first + i] = rigid && i > 0
+                                        ? make_rigid_point(rows.points[sp.first], points[picked[i]])
+                                        : make_point(reg, pair, points[picked[i]], h);
     if (sp.count > 0) {
         const SoftPoint& first = rows.points[sp.first];
         sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
@@ -314,9 +405,10 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
     }
 }
 
-void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
+template <class Sides>
+void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias, const Sides& sides)
 {
-    const double vn = dot(relative_velocity(p), p.normal);
+    const double vn = dot(sides.velocity(p), p.normal);
     double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
     if (p.separation > 0.0) {
         bias = p.separation / h; // apart: only the approach that would close the gap within h is stopped
@@ -327,7 +419,7 @@ void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
     }
     const double d = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
     const double total = std::max(p.normal_impulse + d, 0.0);
-    apply(p, (total - p.normal_impulse) * p.normal);
+    sides.apply(p, (total - p.normal_impulse) * p.normal);
     p.normal_impulse = total;
 }
 
@@ -335,9 +427,9 @@ void solve_normal(SoftPoint& p, double h, double push_out, bool use_bias)
 // Static friction is a soft constraint on the pair's slip since it last slid (its stick), with the
 // normal spring's coefficients: a velocity-only row lets a resting stack creep at the rate its passes
 // leave unconverged (measured: a column of three boxes at 1/60 s crept 1.5 mm/s), the slip pulls it back.
-void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias)
+template <class Sides> void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias, const Sides& sides)
 {
-    const Vec3 v = rigid_relative_velocity(p);
+    const Vec3 v = sides.friction_velocity(p);
     double t[2];
     for (int i = 0; i < 2; ++i) {
         double rate = dot(v, p.tangent[i]), mass_scale = 1.0, impulse_scale = 0.0;
@@ -359,11 +451,8 @@ void solve_friction(SoftPoint& p, SoftPair& sp, bool use_bias)
         t0 *= s;
         t1 *= s;
     }
-    const Vec3 d = (t0 - p.tangent_impulse[0]) * p.tangent[0] + (t1 - p.tangent_impulse[1]) * p.tangent[1];
-    if (p.a.modal.active() || p.b.modal.active())
-        apply_friction(p, d);
-    else
-        apply(p, d);
+    sides.apply_friction(p, (t0 - p.tangent_impulse[0]) * p.tangent[0] +
+                                (t1 - p.tangent_impulse[1]) * p.tangent[1]);
     p.tangent_impulse[0] = t0;
     p.tangent_impulse[1] = t1;
 }
@@ -390,14 +479,23 @@ void solve_rolling(SoftPair& sp, SoftContacts& rows)
 }
 
 // Per pair, its normal rows first, so friction is bounded by this pass's normal impulses.
-void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
+template <class Sides>
+void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Sides& sides)
 {
     for (uint32_t i = 0; i < sp.count; ++i)
-        solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias);
+        solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias, sides);
     for (uint32_t i = 0; i < sp.count; ++i)
-        solve_friction(rows.points[sp.first + i], sp, use_bias);
+        solve_friction(rows.points[sp.first + i], sp, use_bias, sides);
     if (sp.rolling > 0.0 && sp.roll_mass.m[0][0] != 0.0)
         solve_rolling(sp, rows);
+}
+
+void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
+{
+    if (sp.count > 0 && rigid_rows(sp, rows))
+        solve_pair_rows(sp, rows, use_bias, RigidSides(rows.points[sp.first]));
+    else
+        solve_pair_rows(sp, rows, use_bias, AnySides{});
 }
 
 // What world_contacts() reports for a solved pair: the impulse-weighted point, the summed force.
@@ -428,14 +526,23 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
             .point_count = static_cast<int>(sp.count)};
 }
 
+// Each node's place in `nodes` (sorted, no repeats), by node: a table instead of a binary search per
+// lookup (two per pair, twice).
+std::vector<uint32_t> node_places(const std::vector<uint32_t>& nodes)
+{
+    std::vector<uint32_t> place(nodes.empty() ? 0 : static_cast<size_t>(nodes.back()) + 1, 0);
+    for (size_t i = 0; i < nodes.size(); ++i)
+        place[nodes[i]] = static_cast<uint32_t>(i);
+    return place;
+}
+
 // Levels of the contact graph [-]: 1 for a body touching something that takes no impulse (the ground,
 // a kinematic body), n + 1 for one touching a level-n body; 0 where not grounded. Breadth
 // first in pair order, so the result does not depend on threads.
-std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes)
+std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes,
+                                     const std::vector<uint32_t>& place)
 {
-    auto id = [&](uint32_t node) {
-        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
-    };
+    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
     std::vector<uint32_t> start(nodes.size() + 1, 0), edges, level(nodes.size(), 0), queue;
     for (const SoftPair& sp : rows.pairs)
         if (sp.count > 0 && sp.node_a != k_no_node && sp.node_b != k_no_node) {
@@ -496,10 +603,9 @@ void scale_heavy_on_light(SoftContacts& rows)
         return; // no body rests on another
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    auto id = [&](uint32_t node) {
-        return static_cast<size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
-    };
-    const std::vector<uint32_t> level = contact_levels(rows, nodes);
+    const std::vector<uint32_t> place = node_places(nodes);
+    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
+    const std::vector<uint32_t> level = contact_levels(rows, nodes, place);
     for (SoftPair& sp : rows.pairs) {
         if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
             continue;
