@@ -50,10 +50,14 @@ struct Pinned {
 // bits (the same frequencies to 1e-9, as the dense/sparse tests check); the other three keep theirs.
 // Demo and chair, 2026-12-03: the soft contact solver became the default and these two scenes name none,
 // so they now run on it. Ball on board and pile name the penalty solver and keep theirs.
+// Ball on board, 2026-12-03 (modal bases): the sparse eigen solve iterates with blocks of 4 vectors
+// instead of single-vector Lanczos, and CHOLMOD runs on OpenBLAS (scripts/deps.sh) instead of the
+// reference BLAS; the board's modes differ in their last bits (the same frequencies to 1e-9). With the
+// reference BLAS the hash is 0x762c42099125c181.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x763381b9ae78af75ULL},
     {"chair_with_dummy", 500, 0x5c594a29c36a5662ULL},
-    {"ball_on_board", 400, 0x892380ce954cbd5dULL},
+    {"ball_on_board", 400, 0xbd2ca1924965cab8ULL},
     {"pile", 240, 0xf70ec8ba52f26022ULL},
 };
 
