@@ -8,10 +8,14 @@ find_path(SPECTRA_INCLUDE_DIR Spectra/SymGEigsShiftSolver.h REQUIRED)  # modal: 
 # no pkg-config file or CMake package for it, so the header and library are found directly).
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
 find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+# SuiteSparse_config (its allocator hooks: the factor goes on huge pages), linked by name because
+# CHOLMOD's own dependency on it is not on our link line.
+find_library(SUITESPARSECONFIG_LIBRARY suitesparseconfig REQUIRED)
 if(NOT TARGET SuiteSparse::CHOLMOD)
   add_library(SuiteSparse::CHOLMOD UNKNOWN IMPORTED)
   set_target_properties(SuiteSparse::CHOLMOD PROPERTIES IMPORTED_LOCATION ${CHOLMOD_LIBRARY}
-    INTERFACE_INCLUDE_DIRECTORIES ${CHOLMOD_INCLUDE_DIR})
+    INTERFACE_INCLUDE_DIRECTORIES ${CHOLMOD_INCLUDE_DIR}
+    INTERFACE_LINK_LIBRARIES ${SUITESPARSECONFIG_LIBRARY})
 endif()
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CCD REQUIRED IMPORTED_TARGET ccd)  # contact: MPR penetration (libccd, double build)

@@ -107,10 +107,12 @@ struct ModalDiagnostics {
     bool splits_degenerate_cluster = false;    ///< Mode r and r+1 share a frequency (within 1e-6): which
                                                ///< of the pair is kept is arbitrary.
     bool sparse_solver = false;                ///< The sparse (Spectra + CHOLMOD) path ran.
-    int solver_rounds = 0;         ///< Sparse path: Lanczos runs that added modes (more than 1 = a
+    int solver_rounds = 0;         ///< Sparse path: runs that added modes (more than 1 = a Lanczos
                                    ///< confirmation run found missed copies of repeated frequencies).
-    bool inertia_checked = false;  ///< Sparse path: a confirmation run, with every found mode
-                                   ///< deflated, found no further mode below the cut.
+    bool inertia_checked = false;  ///< Sparse path: repeated frequencies cannot have been missed:
+                                   ///< every run of equal ones is narrower than the block iteration's
+                                   ///< block, or (Lanczos) a confirmation run with every found mode
+                                   ///< deflated found no further mode below the cut.
     int dof_count = 0;             ///< Degrees of freedom of the lattice (3 per node).
     int kept_cell_count = 0;       ///< Cells with material in them.
     int cut_cell_count = 0;        ///< Of those, cells the surface cuts (sub-cell quadrature).

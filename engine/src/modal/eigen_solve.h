@@ -17,8 +17,15 @@ struct ModeSolution {
     std::array<double, 6> rigid_eigenvalues{}; ///< ω² of the rigid modes before dropping [rad²/s²].
     double next_eigenvalue = 0.0;              ///< ω²_(r+1) when it was computed, else 0.
     bool sparse = false;
+    bool block = false; ///< Sparse: the block iteration delivered (not the Lanczos fallback).
     int rounds = 0;
     bool inertia_checked = false;
+};
+
+/// How the sparse path iterates with its one Cholesky factor of K − σM.
+enum class SparseMethod {
+    Block,   ///< Block Krylov: the factor applied to a block of vectors at once (the default).
+    Lanczos, ///< Spectra's single-vector Lanczos with confirmation runs (the reference).
 };
 
 /// Solves for the lowest `mode_count` elastic modes. `eigenvalue_scale` [rad²/s²] is E/(ρ ℓ²) for the
@@ -26,6 +33,7 @@ struct ModeSolution {
 /// Rigid modes are detected by count and by their gap to the first elastic eigenvalue
 /// (split_rigid_modes); a seventh zero mode (a lattice that falls apart) is an error.
 [[nodiscard]] Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, ModalSolver solver,
-                                               double eigenvalue_scale);
+                                               double eigenvalue_scale,
+                                               SparseMethod method = SparseMethod::Block);
 
 } // namespace supermodal::modal

@@ -24,6 +24,10 @@ class SparseCholesky
     [[nodiscard]] bool compute(const SparseMatrix& a);
     /// y ← A⁻¹ x for one vector of length rows().
     void solve(const double* x, double* y) const;
+    /// Y ← A⁻¹ X for the columns of X (rows() × b) at once: one pass over the factor for all of them
+    /// (dense triangular solves and products on the supernodes), instead of b passes. False when out
+    /// of memory.
+    [[nodiscard]] bool solve(const Eigen::MatrixXd& x, Eigen::MatrixXd& y) const;
     [[nodiscard]] Eigen::Index rows() const { return m_rows; }
     /// Entries of L [-]: the fill the ordering left.
     [[nodiscard]] double factor_nonzeros() const;
