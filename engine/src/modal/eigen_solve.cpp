@@ -363,8 +363,10 @@ bool solve_sparse_block(const LatticeModel& model, int wanted, double sigma, Den
                 run = a - c <= k_cluster_tolerance * a ? run + 1 : 1;
                 largest = std::max(largest, run);
             }
+            // A run as wide as the block may have more copies than the block caught (a sphere's
+            // five-fold quadrupole modes): the Lanczos path with its confirmation run decides then.
             out_checked = largest < b;
-            return out_vectors.allFinite();
+            return out_checked && out_vectors.allFinite();
         }
         if (dim + b > max_dim)
             return false;

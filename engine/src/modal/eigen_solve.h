@@ -24,8 +24,10 @@ struct ModeSolution {
 
 /// How the sparse path iterates with its one Cholesky factor of K − σM.
 enum class SparseMethod {
-    Block,   ///< Block Krylov: the factor applied to a block of vectors at once (the default).
-    Lanczos, ///< Spectra's single-vector Lanczos with confirmation runs (the reference).
+    Block,   ///< Block Krylov: the factor applied to a block of vectors at once. Not the default: with
+             ///< no confirmation run it can miss members of a cluster of repeated frequencies as wide
+             ///< as its block (a sphere's five-fold modes), which made a soft sphere ring at rest.
+    Lanczos, ///< Spectra's single-vector Lanczos with confirmation runs (the default, the reference).
 };
 
 /// Solves for the lowest `mode_count` elastic modes. `eigenvalue_scale` [rad²/s²] is E/(ρ ℓ²) for the
@@ -34,6 +36,6 @@ enum class SparseMethod {
 /// (split_rigid_modes); a seventh zero mode (a lattice that falls apart) is an error.
 [[nodiscard]] Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, ModalSolver solver,
                                                double eigenvalue_scale,
-                                               SparseMethod method = SparseMethod::Block);
+                                               SparseMethod method = SparseMethod::Lanczos);
 
 } // namespace supermodal::modal
