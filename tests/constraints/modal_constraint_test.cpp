@@ -113,6 +113,22 @@ sm::ConstraintDef weld_root_to_world(sm::Entity board, double hz)
     return c;
 }
 
+// Pulls the board's tip with `force` [N], ramped over the first 500 steps and held to step 10000 (1 s
+// at 0.1 ms); returns the tip's height 1000 steps before the end [m], to tell whether it settled.
+double pull_tip(sm::World& w, sm::Entity board, const sm::Vec3& force)
+{
+    double tip_before = 0.0;
+    for (int i = 0; i < 10000; ++i) {
+        const double ramp = std::min(1.0, i / 500.0);
+        sm::apply_force(w, board, ramp * force,
+                        sm::body_position(w, board) + sm::rotate(sm::body_orientation(w, board), k_tip));
+        w.step();
+        if (i == 8999)
+            tip_before = sm::body_deformed_point(w, board, k_tip).y;
+    }
+    return tip_before;
+}
+
 // Rigid kinetic energy plus the modes' elastic and kinetic energy [J].
 double energy(const sm::World& w, sm::Entity board)
 {
@@ -133,15 +149,7 @@ TEST(ModalConstraint, WeldedBoardBendsLikeACantilever)
     // Ramp the load over 50 ms, hold it to 1 s: the first cantilever mode (31 Hz, measured; 30.4 Hz by
     // Euler–Bernoulli) is damped only through the modes' ζ = 0.7 and settles within that (measured change
     // over the last 0.1 s: 1e-6 relative).
-    double tip_before = 0.0;
-    for (int i = 0; i < 10000; ++i) {
-        const double ramp = std::min(1.0, i / 500.0);
-        sm::apply_force(w, board, ramp * force,
-                        sm::body_position(w, board) + sm::rotate(sm::body_orientation(w, board), k_tip));
-        w.step();
-        if (i == 8999)
-            tip_before = sm::body_deformed_point(w, board, k_tip).y;
-    }
+    const double tip_before = pull_tip(w, board, force);
     const double tip = sm::body_deformed_point(w, board, k_tip).y;
     const double root = sm::body_deformed_point(w, board, k_root).y;
     EXPECT_NEAR(tip, tip_before, 1e-4 * std::abs(tip)); // settled
@@ -188,15 +196,7 @@ TEST(ModalConstraint, ZeroJointLimitsClampTheMaterialLikeAWeld)
     const sm::Constraint joint = sm::create_constraint(w, c);
     const sm::Vec3 force{0, -10.0, 0};
     // Ramped over 50 ms and held to 1 s, as above (settled: the last 0.1 s moves the tip by 1e-4 of it).
-    double tip_before = 0.0;
-    for (int i = 0; i < 10000; ++i) {
-        const double ramp = std::min(1.0, i / 500.0);
-        sm::apply_force(w, board, ramp * force,
-                        sm::body_position(w, board) + sm::rotate(sm::body_orientation(w, board), k_tip));
-        w.step();
-        if (i == 8999)
-            tip_before = sm::body_deformed_point(w, board, k_tip).y;
-    }
+    const double tip_before = pull_tip(w, board, force);
     const double tip = sm::body_deformed_point(w, board, k_tip).y;
     const double root = sm::body_deformed_point(w, board, k_root).y;
     EXPECT_NEAR(tip, tip_before, 1e-4 * std::abs(tip));
