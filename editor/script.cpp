@@ -2,6 +2,7 @@
 #include "script.h"
 
 #include "render_hook.h"
+#include "script_support.h"
 #include "supermodal/body.h"
 
 #include <array>
@@ -16,136 +17,7 @@ namespace supermodal::editor
 {
 namespace
 {
-
-/// Most steps or frames one action may ask for: a typo (1e9) should not hang CI.
-constexpr double k_max_count = 1e7;
-
-/// Thrown inside the runner only; becomes a ScriptOutcome at its top.
-struct ScriptError {
-    ScriptFailure failure;
-    std::string where;
-    std::string what;
-};
-
-[[noreturn]] void fail(std::string where, std::string what, ScriptFailure f = ScriptFailure::BadScript)
-{
-    throw ScriptError{f, std::move(where), std::move(what)};
-}
-
-std::string kind_of(const Json& v)
-{
-    return v.is_null() ? "null" : std::string(v.type_name()) + " " + v.dump();
-}
-
-const Json& required(const Json& action, const std::string& where, const char* key)
-{
-    if (!action.contains(key))
-        fail(where, std::string("missing required key \"") + key + "\"");
-    return action.at(key);
-}
-
-std::string text(const Json& action, const std::string& where, const char* key)
-{
-    const Json& v = required(action, where, key);
-    if (!v.is_string())
-        fail(where + "/" + key, "expected a string, found " + kind_of(v));
-    return v.get<std::string>();
-}
-
-int count(const Json& action, const std::string& where, const char* key, int fallback)
-{
-    if (!action.contains(key))
-        return fallback;
-    const Json& v = action.at(key);
-    if (!v.is_number() || v.get<double>() != std::floor(v.get<double>()) || v.get<double>() < 1.0 ||
-        v.get<double>() > k_max_count)
-        fail(where + "/" + key, "expected an integer in [1, 1e7], found " + kind_of(v));
-    return static_cast<int>(v.get<double>());
-}
-
-double number(const Json& action, const std::string& where, const char* key, double fallback)
-{
-    if (!action.contains(key))
-        return fallback;
-    const Json& v = action.at(key);
-    if (!v.is_number() || !std::isfinite(v.get<double>()))
-        fail(where + "/" + key, "expected a finite number, found " + kind_of(v));
-    return v.get<double>();
-}
-
-Vec3 vec3(const Json& v, const std::string& where)
-{
-    if (!v.is_array() || v.size() != 3)
-        fail(where, "expected an array of 3 numbers, found " + kind_of(v));
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) {
-        if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-            fail(where + "/" + std::to_string(i), "expected a finite number, found " + kind_of(v[i]));
-        out[i] = v[i].get<double>();
-    }
-    return out;
-}
-
-Ray ray(const Json& action, const std::string& where)
-{
-    const Json& r = required(action, where, "ray");
-    const std::string rw = where + "/ray";
-    if (!r.is_object() || !r.contains("origin") || !r.contains("direction") || r.size() != 2)
-        fail(rw, "expected {\"origin\": [x, y, z], \"direction\": [x, y, z]}, found " + kind_of(r));
-    Ray out{vec3(r["origin"], rw + "/origin"), vec3(r["direction"], rw + "/direction")};
-    if (!(length(out.direction) > 0.0))
-        fail(rw + "/direction", "expected a non-zero direction");
-    return out;
-}
-
-/// The ray through the pixel at keys (kx, ky) of the UI's display, through the scene camera.
-Ray pixel_ray(const Json& action, const std::string& where, const EditorSession& session, EditorUi& ui,
-              const char* kx, const char* ky)
-{
-    const double x = number(action, where, kx, NAN), y = number(action, where, ky, NAN);
-    if (!(x >= 0.0 && x <= ui.width()))
-        fail(where + "/" + kx, "expected a pixel in [0, " + std::to_string(ui.width()) + "], found " +
-                                   kind_of(action.value(kx, Json())));
-    if (!(y >= 0.0 && y <= ui.height()))
-        fail(where + "/" + ky, "expected a pixel in [0, " + std::to_string(ui.height()) + "], found " +
-                                   kind_of(action.value(ky, Json())));
-    Result<Ray> r = screen_ray(session, ui, x, y);
-    if (!r)
-        fail(where, r.error().what);
-    return *r;
-}
-
-/// A ray given as "ray" or as pixel keys; exactly one of the two.
-Ray ray_or_pixel(const Json& action, const std::string& where, const EditorSession& session, EditorUi& ui,
-                 const char* kx, const char* ky)
-{
-    if (action.contains("ray") == action.contains(kx))
-        fail(where, std::string("expected either \"ray\" or the pixel \"") + kx + "\", \"" + ky + "\"");
-    return action.contains("ray") ? ray(action, where) : pixel_ray(action, where, session, ui, kx, ky);
-}
-
-void check(const Status& status, const std::string& where)
-{
-    if (!status)
-        fail(where, status.error().message());
-}
-
-std::string vec_text(const Vec3& v)
-{
-    std::ostringstream out;
-    out << "[" << v.x << ", " << v.y << ", " << v.z << "]";
-    return out.str();
-}
-
-/// What an action runs against; `where` is the action's JSON pointer.
-struct ActionContext {
-    const Json& action;
-    const std::string& where;
-    const std::filesystem::path& base_dir;
-    EditorSession& session;
-    EditorUi& ui;
-    std::ostream& log;
-};
+using namespace script;
 
 void run_load(const ActionContext& c)
 {
@@ -510,18 +382,6 @@ void run_camera(const ActionContext& c)
     c.log << ", " << checked << " bodies framed";
 }
 
-/// "body", or the selected body when it is absent; an error naming the key when there is neither.
-std::string body_or_selected(const ActionContext& c)
-{
-    const std::string name =
-        c.action.contains("body") ? text(c.action, c.where, "body") : c.ui.selected_body();
-    if (name.empty())
-        fail(c.where, "expected \"body\" (no body is selected)");
-    if (find_body(c.session.world(), name).is_null())
-        fail(c.where + (c.action.contains("body") ? "/body" : ""), "no body named \"" + name + "\"");
-    return name;
-}
-
 /// Logs a body's modes as the Body window lists them, frequencies to the last bit (17 digits).
 void run_modes(const ActionContext& c)
 {
@@ -701,130 +561,6 @@ void run_save(const ActionContext& c)
         fail(c.where + "/state", "expected \"current\" or \"initial\", found \"" + state + "\"");
     check(c.session.save(file.string(), state == "current"), c.where + "/file");
     c.log << " " << file.string();
-}
-
-/// A failed session call: the message points at the key it names when the action has it.
-void check_keyed(const ActionContext& c, const Error& e)
-{
-    fail(!e.where.empty() && c.action.contains(e.where) ? c.where + "/" + e.where : c.where, e.what);
-}
-
-/// Exactly one of "at" (a world point) and a ray ("ray" or the pixel "x", "y").
-bool at_or_ray(const ActionContext& c)
-{
-    const int given =
-        int(c.action.contains("at")) + int(c.action.contains("ray")) + int(c.action.contains("x"));
-    if (given != 1)
-        fail(c.where, R"(expected one of "at" [x, y, z], "ray" or the pixel "x", "y")");
-    return c.action.contains("at");
-}
-
-std::string optional_text(const ActionContext& c, const char* key)
-{
-    return c.action.contains(key) ? text(c.action, c.where, key) : std::string();
-}
-
-/// Lists a folder's part files and draws their thumbnails (the Parts panel's library).
-void run_parts(const ActionContext& c)
-{
-    ThumbnailDef def = c.ui.parts_library.settings(); // the command line's cache unless "cache" is given
-    def.size = count(c.action, c.where, "size", ThumbnailDef{}.size);
-    if (c.action.contains("cache"))
-        def.cache_dir = (c.base_dir / text(c.action, c.where, "cache")).string();
-    const std::filesystem::path folder = c.base_dir / text(c.action, c.where, "folder");
-    if (const Status status = c.ui.parts_library.scan(folder.string(), def); !status)
-        check_keyed(c,
-                    Error{"", status.error().where == "size" ? "size" : "folder", status.error().message()});
-    const int drawn = c.ui.parts_library.render_pending();
-    c.log << " " << folder.string() << ": " << c.ui.parts_library.entries().size() << " parts, " << drawn
-          << " drawn";
-    for (const PartEntry& e : c.ui.parts_library.entries())
-        c.log << ", " << e.label << (e.width > 0 ? (e.from_cache ? " (cached)" : "") : " (" + e.error + ")");
-}
-
-/// Adds a part file at a point (its origin there) or where a ray meets the scene (set on the surface,
-/// as a drop from the Parts panel).
-void run_add_part(const ActionContext& c)
-{
-    PartDef def;
-    def.file = (c.base_dir / text(c.action, c.where, "file")).string();
-    def.name = optional_text(c, "name");
-    def.prefix = optional_text(c, "prefix");
-    if (c.action.contains("orientation")) {
-        const Json& q = c.action["orientation"];
-        if (!q.is_array() || q.size() != 4 || !std::all_of(q.begin(), q.end(), [](const Json& v) {
-                return v.is_number() && std::isfinite(v.get<double>());
-            }))
-            fail(c.where + "/orientation",
-                 "expected a quaternion [w, x, y, z] of finite numbers, found " + kind_of(q));
-        const Quat raw{q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()};
-        if (!(raw.w * raw.w + raw.x * raw.x + raw.y * raw.y + raw.z * raw.z > 0.0))
-            fail(c.where + "/orientation", "expected a quaternion that is not all zero");
-        def.orientation = normalized(raw);
-    }
-    Result<std::string> added = Error{};
-    if (at_or_ray(c)) {
-        def.position = vec3(c.action["at"], c.where + "/at");
-        added = c.session.add_part(def);
-    } else {
-        added = drop_part(c.session, ray_or_pixel(c.action, c.where, c.session, c.ui, "x", "y"), def);
-    }
-    if (!added)
-        check_keyed(c, added.error());
-    c.ui.select_body(*added);
-    c.log << " " << *added << " at "
-          << vec_text(body_position(c.session.world(), find_body(c.session.world(), *added)));
-}
-
-ConstraintType constraint_type(const ActionContext& c)
-{
-    const std::string type = c.action.contains("type") ? text(c.action, c.where, "type") : "weld";
-    if (type == "weld")
-        return ConstraintType::Weld;
-    if (type == "point")
-        return ConstraintType::Point;
-    if (type == "distance")
-        return ConstraintType::Distance;
-    fail(c.where + "/type", R"(expected "weld", "point" or "distance", found ")" + type + "\"");
-}
-
-/// Attaches a part to another at a surface point: a world point on `to`, or where a ray meets it.
-void run_attach(const ActionContext& c)
-{
-    AttachDef def;
-    def.body = body_or_selected(c);
-    def.type = constraint_type(c);
-    def.frequency = number(c.action, c.where, "frequency", def.frequency);
-    def.damping_ratio = number(c.action, c.where, "damping_ratio", def.damping_ratio);
-    def.name = optional_text(c, "name");
-    def.to = optional_text(c, "to");
-    if (at_or_ray(c)) {
-        if (def.to.empty())
-            fail(c.where, R"(expected "to" (the part the point is on) with "at")");
-        def.point = vec3(c.action["at"], c.where + "/at");
-    } else {
-        const std::optional<PickHit> hit =
-            c.session.pick(ray_or_pixel(c.action, c.where, c.session, c.ui, "x", "y"));
-        if (!hit)
-            fail(c.where, "the ray hits no part", ScriptFailure::CheckFailed);
-        if (!def.to.empty() && hit->name != def.to)
-            fail(c.where + "/to", "the ray hits \"" + hit->name + "\", not \"" + def.to + "\"",
-                 ScriptFailure::CheckFailed);
-        def.to = hit->name;
-        def.point = hit->point;
-    }
-    Result<std::string> made = c.session.attach(def);
-    if (!made)
-        check_keyed(c, made.error());
-    c.log << " " << def.body << " to " << def.to << " at " << vec_text(def.point) << ": " << *made;
-}
-
-void run_detach(const ActionContext& c)
-{
-    const std::string name = body_or_selected(c);
-    if (const Status status = c.session.detach(name); !status)
-        check_keyed(c, status.error());
-    c.log << " " << name;
 }
 
 struct ActionSpec {
