@@ -58,6 +58,7 @@ struct Sample {
     double residual = 0.0;    // |w − (w·u) u|, or |P w| for the least overlap [m]
     Vec3 step{};              // Newton's turn of n, tangent [rad]
     bool solvable = false;    // the 2×2 system was regular (ray: and w points along +u)
+    double decrease = 0.0;    // least overlap: the overlap Newton's full step is predicted to remove [m]
 };
 
 Sample evaluate(Query& q, const Vec3& n)
@@ -87,6 +88,7 @@ Sample evaluate(Query& q, const Vec3& n)
             return s;
         s.step = (-(h22 * g1 - h12 * g2) / det) * t1 + (-(h11 * g2 - h12 * g1) / det) * t2;
         s.solvable = is_finite(s.step);
+        s.decrease = -0.5 * dot(w, s.step);
         return s;
     }
     const double k11 = dot(q.e1, jt1), k12 = dot(q.e1, jt2), k21 = dot(q.e2, jt1), k22 = dot(q.e2, jt2);
@@ -141,7 +143,8 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
         if (!cur.solvable)
             return result_of(q, cur, false);
         const double len = length(cur.step);
-        if (len <= k_penetration_angle_tolerance)
+        if (len <= k_penetration_angle_tolerance ||
+            (q.target == PenetrationTarget::LeastOverlap && cur.decrease <= k_penetration_depth_tolerance))
             return result_of(q, cur, true);
         if (q.calls >= 2 * max_evaluations)
             return result_of(q, cur, false);

@@ -37,8 +37,12 @@ struct Penetration {
 /// Newton stops when its next step would turn the normal by less than this [rad]: the normal then lags
 /// the exact one by ~1e-6 rad, the depth by ~(curvature radius) · 1e-12, far below MPR's tolerance.
 inline constexpr double k_penetration_angle_tolerance = 1e-6;
+/// The least-overlap search also stops when Newton's model of the overlap says its next step would
+/// lower it by less than this [m]: the depth is then within about that of the minimum (an overlap along any
+/// direction bounds the depth from above), and each point is still an exact support point.
+inline constexpr double k_penetration_depth_tolerance = 1e-9;
 /// Evaluations (two support-map calls each) one Newton search may make [-].
-inline constexpr int k_penetration_max_evaluations = 6;
+inline constexpr int k_penetration_max_evaluations = 12;
 
 /// Newton from `start` (unit, from B towards A). Not hit when an evaluated direction separates the
 /// bodies (an exact answer); not converged when the budget ran out or the model broke down.
