@@ -191,10 +191,10 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     b.density = def.density;
     b.young = def.young;
     b.poisson = def.poisson;
-    b.mode_count = mode_count;
+    b.mode_count = static_cast<int>(sol->eigenvalues.size()); // more than asked: a cluster kept whole
     store_modes(*model, *sol, b);
     b.kinds = modal::classify_modes(*model, sol->vectors);
-    fill_diagnostics(*model, *sol, mode_count, b.diagnostics);
+    fill_diagnostics(*model, *sol, b.mode_count, b.diagnostics);
     b.diagnostics.assembly_seconds = assembly_seconds;
     b.diagnostics.eigen_seconds = seconds_since(solve_start);
     return b;
