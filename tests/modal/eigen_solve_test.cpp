@@ -268,4 +268,14 @@ TEST(ModalEigenSolve, TheCutNeverSplitsAClusterOfRepeatedFrequencies)
     EXPECT_FALSE(b.diagnostics.splits_degenerate_cluster);
     ASSERT_EQ(b.mode_count, 13);
     EXPECT_EQ(clusters(b, 13).back(), 3);
+
+    // Asked for exactly (a moulded basis, here with every node left in place): 12 modes, the run split.
+    const sm::Result<modal::ModeSolution> exact = modal::solve_modes(
+        *model, asked, sm::ModalSolver::Sparse, scale, modal::SparseMethod::Block, modal::ClusterCut::Exact);
+    ASSERT_TRUE(exact) << exact.error().message();
+    EXPECT_EQ(exact->eigenvalues.size(), asked);
+    ball.rest_offsets.assign(b.node_positions.size(), sm::Vec3{0, 0, 0});
+    const sm::ModalBasis moulded = build_with(ball, sm::ModalSolver::Auto);
+    EXPECT_EQ(moulded.mode_count, 12);
+    EXPECT_TRUE(moulded.diagnostics.splits_degenerate_cluster);
 }

@@ -50,10 +50,14 @@ struct Pinned {
 // bits (the same frequencies to 1e-9, as the dense/sparse tests check); the other three keep theirs.
 // Demo and chair, 2026-12-03: the soft contact solver became the default and these two scenes name none,
 // so they now run on it. Ball on board and pile name the penalty solver and keep theirs.
+// Ball on board, 2026-12-03 (later): the sparse eigen solve's default became the block Krylov iteration
+// (4 vectors a step) instead of single-vector Lanczos, so the board's modes differ in their last bits
+// (ω² within 1e-10, as ModalEigenSolve checks). Both runs compared over all 400 steps: positions within
+// 1.4e-13 m, velocities within 8e-12 m/s, angular velocities within 1.4e-10 rad/s.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x763381b9ae78af75ULL},
     {"chair_with_dummy", 500, 0x5c594a29c36a5662ULL},
-    {"ball_on_board", 400, 0x892380ce954cbd5dULL},
+    {"ball_on_board", 400, 0x762c42099125c181ULL},
     {"pile", 240, 0xf70ec8ba52f26022ULL},
 };
 
