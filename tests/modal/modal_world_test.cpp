@@ -353,9 +353,12 @@ TEST(ModalWorld, SoftSphereLandsWithoutGainingEnergy)
     ASSERT_TRUE(touched);
     EXPECT_LT(highest_after_contact, 0.5);
     EXPECT_EQ(world.warnings().modal_non_finite, 0u);
-    // At rest (3 s, measured |v| < 5 mm/s): the centre has sunk by the squash plus the contact
-    // penetration (measured 9.6 mm), between 1 mm and 3 cm.
-    EXPECT_LT(std::abs(sm::body_linear_velocity(world, ball).y), 0.02);
+    // At rest (3 s, measured |v| = 8.4 mm/s on either sparse eigen path): the ball keeps 13 modes, the
+    // 12 asked and the rest of the three-fold run the cut fell in. Keeping two of those three instead
+    // (which two is arbitrary) left it at 1.9 or 2.1 cm/s depending on the solver, so 1.2 cm/s fails
+    // on a split run. The centre has sunk by the squash plus the contact penetration (measured 5.9 mm),
+    // between 1 mm and 3 cm.
+    EXPECT_LT(std::abs(sm::body_linear_velocity(world, ball).y), 0.012);
     const double sink = 0.3 - sm::body_position(world, ball).y;
     EXPECT_GT(sink, 1e-3);
     EXPECT_LT(sink, 0.03);

@@ -52,10 +52,14 @@ struct Pinned {
 // so they now run on it. Ball on board and pile name the penalty solver and keep theirs.
 // Demo and chair, 2026-12-03 (soft friction): a pair of rigid bodies forgets its static-friction stick only
 // when its friction as a whole reaches μ times its load, not when one point reaches its own disc.
+// Ball on board, 2026-12-03 (later): the sparse eigen solve's default became the block Krylov iteration
+// (4 vectors a step) instead of single-vector Lanczos, so the board's modes differ in their last bits
+// (ω² within 1e-10, as ModalEigenSolve checks). Both runs compared over all 400 steps: positions within
+// 1.4e-13 m, velocities within 8e-12 m/s, angular velocities within 1.4e-10 rad/s.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x939c2f03270ad461ULL},
     {"chair_with_dummy", 500, 0x870e13b924933f4eULL},
-    {"ball_on_board", 400, 0x892380ce954cbd5dULL},
+    {"ball_on_board", 400, 0x762c42099125c181ULL},
     {"pile", 240, 0xf70ec8ba52f26022ULL},
 };
 

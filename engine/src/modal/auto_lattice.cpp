@@ -29,8 +29,10 @@ void set_changes(LatticeChoice& choice, std::vector<double> changes)
 
 std::vector<double> frequency_changes(const ModalBasis& fine, const ModalBasis& coarse)
 {
-    std::vector<double> out(fine.frequencies_hz.size(), 1.0);
-    for (size_t k = 0; k < out.size() && k < coarse.frequencies_hz.size(); ++k) {
+    // Both keep at least the modes asked for; either may keep more where its cut met a cluster of
+    // repeated frequencies (eigen_solve.h), so only the modes both hold are compared.
+    std::vector<double> out(std::min(fine.frequencies_hz.size(), coarse.frequencies_hz.size()), 1.0);
+    for (size_t k = 0; k < out.size(); ++k) {
         const double f = fine.frequencies_hz[k];
         if (f > 0.0) // elastic modes are; a zero would leave the change at 1
             out[k] = std::abs(coarse.frequencies_hz[k] - f) / f;

@@ -44,8 +44,8 @@ struct LatticeChoice {
                                                    double target = k_auto_lattice_target,
                                                    int max_dofs = k_auto_lattice_max_dofs);
 
-/// Relative difference of each of fine's frequencies from coarse's, mode by mode [-] (r of fine; a mode
-/// coarse lacks counts as 1).
+/// Relative difference of each of fine's frequencies from coarse's, mode by mode [-], over the modes both
+/// keep (at least the r asked for: a basis keeps a cluster of repeated frequencies whole).
 [[nodiscard]] std::vector<double> frequency_changes(const ModalBasis& fine, const ModalBasis& coarse);
 
 } // namespace supermodal::modal

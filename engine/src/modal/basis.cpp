@@ -175,8 +175,12 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
                      "a full body's lattice has " + std::to_string(dofs) + " degrees of freedom, more than " +
                          std::to_string(k_max_full_dofs) + " (dense solve): coarsen the lattice"};
     const int mode_count = all ? dofs - 6 : def.mode_count;
+    // A moulded basis replaces the unmoulded one amplitude for amplitude: the same count, exactly.
+    const modal::ClusterCut cut =
+        def.rest_offsets.empty() ? modal::ClusterCut::KeepWhole : modal::ClusterCut::Exact;
     Result<modal::ModeSolution> sol =
-        modal::solve_modes(*model, mode_count, all ? ModalSolver::Dense : def.solver, eigen_scale(def, lat));
+        modal::solve_modes(*model, mode_count, all ? ModalSolver::Dense : def.solver, eigen_scale(def, lat),
+                           modal::SparseMethod::Block, cut);
     if (!sol)
         return sol.error();
 
@@ -191,10 +195,10 @@ Result<ModalBasis> build_modal_basis(const ModalBasisDef& def)
     b.density = def.density;
     b.young = def.young;
     b.poisson = def.poisson;
-    b.mode_count = mode_count;
+    b.mode_count = static_cast<int>(sol->eigenvalues.size()); // more than asked: a cluster kept whole
     store_modes(*model, *sol, b);
     b.kinds = modal::classify_modes(*model, sol->vectors);
-    fill_diagnostics(*model, *sol, mode_count, b.diagnostics);
+    fill_diagnostics(*model, *sol, b.mode_count, b.diagnostics);
     b.diagnostics.assembly_seconds = assembly_seconds;
     b.diagnostics.eigen_seconds = seconds_since(solve_start);
     return b;

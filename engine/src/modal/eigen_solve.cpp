@@ -18,6 +18,7 @@
 // below the cut are added and the search repeats. (A Sturm count, the inertia of an LDLᵀ of K − μM,
 // would check the same; no supernodal factorization here gives the inertia of an indefinite matrix,
 // and a simplicial one costs several times the whole solve on 3-D lattices.)
+// Every path keeps a cluster of repeated frequencies whole where the cut would split it (whole_clusters).
 // Both paths end with a Rayleigh–Ritz step on K and M themselves: it makes the kept vectors exactly
 // M-orthonormal and K-orthogonal (including inside clusters of repeated frequencies) and gives the
 // eigenvalues as Rayleigh quotients, free of the cancellation in 1/ν + σ.
@@ -180,6 +181,24 @@ bool run_lanczos(const SparseCholesky& cholesky, const SparseMatrix& m, const De
     return out_vectors.allFinite();
 }
 
+/// Two ω² of one cluster of repeated frequencies (relative gap within k_cluster_tolerance).
+bool same_frequency(double a, double b)
+{
+    return std::abs(a - b) <= k_cluster_tolerance * std::max(std::abs(a), std::abs(b));
+}
+
+/// How many elastic modes to keep: `mode_count`, extended over a cluster of repeated frequencies that
+/// the cut would split, up to `max_kept`. Which members of a split cluster a solver keeps is arbitrary
+/// (a sphere's three-fold modes on a cubic lattice), and different picks respond differently to the
+/// same load. `omega2(j)` is the j-th lowest elastic ω² and is read for j < `known` only.
+template <class Omega2> int whole_clusters(int mode_count, int max_kept, int known, const Omega2& omega2)
+{
+    int kept = mode_count;
+    while (kept < known && kept < max_kept && same_frequency(omega2(kept), omega2(kept - 1)))
+        ++kept;
+    return kept;
+}
+
 /// A cut μ between the wanted-th value (0-based) and the next distinct one above it.
 double cut_above(const Vector& values, int wanted)
 {
@@ -190,22 +209,26 @@ double cut_above(const Vector& values, int wanted)
     return values[values.size() - 1] * (1.0 + k_cluster_tolerance);
 }
 
-/// Dense: the `count` lowest eigenvectors (rigid ones included), not yet orthonormalised.
-bool solve_dense(const LatticeModel& model, int count, double sigma, Dense& out_vectors)
+/// Dense: the six rigid vectors, the `mode_count` lowest elastic ones (more where the cut would split a
+/// cluster, whole_clusters) and the next one when there is one; not yet orthonormalised.
+bool solve_dense(const LatticeModel& model, int mode_count, int max_kept, double sigma, Dense& out_vectors)
 {
     const Dense k(model.stiffness), m(model.mass);
     const Dense a = k - sigma * m;
     const Eigen::GeneralizedSelfAdjointEigenSolver<Dense> es(m, a); // ascending ν = 1/(ω² − σ)
     if (es.info() != Eigen::Success)
         return false;
-    out_vectors = es.eigenvectors().rightCols(count);
+    const auto n = static_cast<int>(k.rows());
+    const auto omega2 = [&](int j) { return 1.0 / es.eigenvalues()[n - 7 - j] + sigma; };
+    const int kept = whole_clusters(mode_count, max_kept, n - 6, omega2);
+    out_vectors = es.eigenvectors().rightCols(std::min(n, 6 + kept + 1));
     return out_vectors.allFinite();
 }
 
 /// Sparse: the rigid vectors followed by at least `wanted` elastic ones, confirmed complete below the
 /// cut unless out_checked comes back false.
-bool solve_sparse(const LatticeModel& model, int wanted, double sigma, Dense& out_vectors, int& out_rounds,
-                  bool& out_checked)
+bool solve_sparse(const LatticeModel& model, int wanted, int max_kept, double sigma, Dense& out_vectors,
+                  int& out_rounds, bool& out_checked)
 {
     const SparseMatrix& k = model.stiffness;
     const SparseMatrix& m = model.mass;
@@ -237,6 +260,12 @@ bool solve_sparse(const LatticeModel& model, int wanted, double sigma, Dense& ou
                 return false;
             if (left[0] > cut) {
                 out_checked = true;
+                // A cluster kept whole may take every mode found: the lowest one left is the next above.
+                const auto known = static_cast<int>(values.size());
+                if (whole_clusters(wanted - 1, max_kept, known, [&](int j) { return values[j]; }) == known) {
+                    found.conservativeResize(Eigen::NoChange, found.cols() + 1);
+                    found.rightCols(1) = unused.col(0);
+                }
                 break;
             }
             if (out_rounds == k_max_rounds)
@@ -288,16 +317,17 @@ Dense start_block(Eigen::Index n, int columns)
     return v;
 }
 
-/// Sparse, block Krylov: the rigid vectors followed by the `wanted` lowest elastic Ritz vectors.
+/// Sparse, block Krylov: the rigid vectors followed by the `mode_count` lowest elastic Ritz vectors (more
+/// where the cut would split a cluster, up to `max_kept`) and the next one.
 /// The Krylov space of T = P (K − σM)⁻¹ M (P: M-orthogonal projection away from the rigid modes)
 /// grows by a block of b vectors per step, each step one solve with b right-hand sides. The basis V
 /// is kept M-orthonormal (block Gram–Schmidt, twice), so T V = V H + Y R Eᵀ with H the projected
 /// operator, Y the next block and R its triangular factor; a Ritz pair (ν, s) of H has the residual
-/// ‖T V s − ν V s‖_M = ‖R s_last‖, read without touching the lattice. Done when the `wanted` largest
-/// ν (lowest ω²) have residuals below k_lanczos_tolerance·ν. A block of b vectors finds up to b copies
+/// ‖T V s − ν V s‖_M = ‖R s_last‖, read without touching the lattice. Done when those largest ν
+/// (lowest ω²) have residuals below k_lanczos_tolerance·ν. A block of b vectors finds up to b copies
 /// of a repeated eigenvalue, so no confirmation run is needed while every cluster is smaller than b.
-bool solve_sparse_block(const LatticeModel& model, int wanted, double sigma, Dense& out_vectors,
-                        bool& out_checked)
+bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept, double sigma,
+                        Dense& out_vectors, bool& out_checked)
 {
     const SparseMatrix& k = model.stiffness;
     const SparseMatrix& m = model.mass;
@@ -309,7 +339,7 @@ bool solve_sparse_block(const LatticeModel& model, int wanted, double sigma, Den
     const Dense m_rigid = m * rigid;
     const auto project = [&](Dense& y) { y -= rigid * (m_rigid.transpose() * y); };
     const Eigen::Index max_dim = std::min<Eigen::Index>(n - rigid.cols() - b, k_block_max_dim) / b * b;
-    if (max_dim < wanted + b)
+    if (max_dim < mode_count + 1 + b)
         return false;
 
     SparseCholesky cholesky;
@@ -344,23 +374,28 @@ bool solve_sparse_block(const LatticeModel& model, int wanted, double sigma, Den
 
         const Dense hs = 0.5 * (h.topLeftCorner(dim, dim) + h.topLeftCorner(dim, dim).transpose());
         const Eigen::SelfAdjointEigenSolver<Dense> es(hs); // ascending ν: the wanted ones last
+        // Converged pairs from the top (lowest ω² first); the set is done when the `mode_count` lowest,
+        // extended over a cluster the cut would split, and the next one above them have converged.
         int converged = 0;
-        while (converged < wanted && converged < dim) {
+        while (converged < dim && converged <= max_kept) {
             const Eigen::Index j = dim - 1 - converged;
             const double nu = es.eigenvalues()[j];
             if (!(nu > 0.0) || (r * es.eigenvectors().col(j).tail(b)).norm() > k_lanczos_tolerance * nu)
                 break;
             ++converged;
         }
-        if (converged == wanted) {
+        const auto omega2 = [&](int i) { return 1.0 / es.eigenvalues()[dim - 1 - i] + sigma; };
+        const int kept =
+            converged > mode_count ? whole_clusters(mode_count, max_kept, converged, omega2) : converged;
+        if (kept < converged) {
+            const int wanted = kept + 1;
             const Dense s = es.eigenvectors().rightCols(wanted).rowwise().reverse();
             out_vectors.resize(n, rigid.cols() + wanted);
             out_vectors << rigid, basis.leftCols(dim) * s;
             // Largest run of equal eigenvalues found: the block must be wider to have caught them all.
             int run = 1, largest = 1;
             for (int i = 1; i < wanted; ++i) {
-                const double a = es.eigenvalues()[dim - i], c = es.eigenvalues()[dim - 1 - i];
-                run = a - c <= k_cluster_tolerance * a ? run + 1 : 1;
+                run = same_frequency(omega2(i), omega2(i - 1)) ? run + 1 : 1;
                 largest = std::max(largest, run);
             }
             // A run as wide as the block may have more copies than the block caught (a sphere's
@@ -380,7 +415,7 @@ bool solve_sparse_block(const LatticeModel& model, int wanted, double sigma, Den
 } // namespace
 
 Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, ModalSolver solver,
-                                 double eigenvalue_scale, SparseMethod method)
+                                 double eigenvalue_scale, SparseMethod method, ClusterCut cut)
 {
     const int n = model.dof_count();
     if (mode_count > n - 6)
@@ -389,6 +424,7 @@ Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, Moda
                          " elastic degrees of freedom, fewer than the modes asked for (" +
                          std::to_string(mode_count) + "): refine it or ask for fewer modes"};
     const double sigma = -k_shift_fraction * eigenvalue_scale;
+    const int max_kept = cut == ClusterCut::KeepWhole ? std::max(mode_count, k_max_modes) : mode_count;
     ModeSolution out;
     out.sparse = solver == ModalSolver::Sparse || (solver == ModalSolver::Auto && n > k_dense_dof_limit);
     // Lanczos needs room beyond the wanted vectors; tiny lattices always go dense.
@@ -396,14 +432,15 @@ Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, Moda
     Dense vectors;
     bool solved = false;
     if (!out.sparse) {
-        solved = solve_dense(model, std::min(n, mode_count + 7), sigma, vectors);
+        solved = solve_dense(model, mode_count, max_kept, sigma, vectors);
     } else if (method == SparseMethod::Block) {
-        solved = solve_sparse_block(model, mode_count + 1, sigma, vectors, out.inertia_checked);
+        solved = solve_sparse_block(model, mode_count, max_kept, sigma, vectors, out.inertia_checked);
         out.block = solved;
         out.rounds = 1;
     }
     if (out.sparse && !solved) // the reference path, also when the block iteration gives up
-        solved = solve_sparse(model, mode_count + 1, sigma, vectors, out.rounds, out.inertia_checked);
+        solved =
+            solve_sparse(model, mode_count + 1, max_kept, sigma, vectors, out.rounds, out.inertia_checked);
     Vector values;
     Dense ritz;
     if (!solved || !rayleigh_ritz(model.stiffness, model.mass, vectors, values, ritz) ||
@@ -416,10 +453,12 @@ Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, Moda
         return Error{"", "/lattice", split.problem};
     for (int i = 0; i < 6; ++i)
         out.rigid_eigenvalues[i] = values[i];
-    out.eigenvalues = values.segment(6, mode_count);
-    out.vectors = ritz.middleCols(6, mode_count);
-    if (values.size() > 6 + mode_count)
-        out.next_eigenvalue = values[6 + mode_count];
+    const int kept = whole_clusters(mode_count, max_kept, static_cast<int>(values.size()) - 6,
+                                    [&](int j) { return values[6 + j]; });
+    out.eigenvalues = values.segment(6, kept);
+    out.vectors = ritz.middleCols(6, kept);
+    if (values.size() > 6 + kept)
+        out.next_eigenvalue = values[6 + kept];
     return out;
 }
 
