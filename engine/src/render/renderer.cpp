@@ -3,6 +3,7 @@
 #include "render/gl_context.h"
 #include "render/meshes.h"
 #include "render/shaders.h"
+#include "render/sky_region.h"
 #include "render/view.h"
 #include "supermodal/body.h"
 #include "supermodal/geometry.h"
@@ -11,6 +12,7 @@
 #include "supermodal/world.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -97,14 +99,15 @@ struct Renderer::Impl {
     std::map<Entity, Vec3> colors;
     std::map<Entity, std::shared_ptr<const TriangleMesh>> custom_meshes; ///< set_body_mesh()
     const World* last_world = nullptr;
-    GLuint empty_vao = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
+    GLuint sky_vao = 0, sky_vbo = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
     std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
 
     ~Impl()
     {
         if (context.make_current()) {
             bodies.clear(); // skins hold GL buffers: free them while the context is current
-            glDeleteVertexArrays(1, &empty_vao);
+            glDeleteVertexArrays(1, &sky_vao);
+            glDeleteBuffers(1, &sky_vbo);
             glDeleteVertexArrays(1, &grid_vao);
             glDeleteBuffers(1, &grid_vbo);
             glDeleteVertexArrays(1, &shadow_vao);
@@ -121,7 +124,12 @@ struct Renderer::Impl {
             return s;
         if (Status s = render::compile_programs(programs); !s)
             return s;
-        glGenVertexArrays(1, &empty_vao);
+        glGenVertexArrays(1, &sky_vao);
+        glGenBuffers(1, &sky_vbo);
+        glBindVertexArray(sky_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, sky_vbo);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
         glGenVertexArrays(1, &grid_vao);
         glGenBuffers(1, &grid_vbo);
         glBindVertexArray(grid_vao);
@@ -165,16 +173,21 @@ struct Renderer::Impl {
         return e;
     }
 
-    // Drawn last at the far plane with LEQUAL: only pixels nothing else covered are shaded.
-    void draw_sky()
+    // Drawn last at the far plane with LEQUAL: only pixels nothing else covered are shaded. Under
+    // MSAA llvmpipe pays per covered sample even where the depth test fails, so the triangles leave
+    // out the grid's square where there is one (sky_triangles).
+    void draw_sky(const std::vector<float>& triangles)
     {
         glDepthFunc(GL_LEQUAL);
         glDepthMask(GL_FALSE);
         glUseProgram(programs.sky);
         set_vec3(programs.sky_top, def.sky_top);
         set_vec3(programs.sky_bottom, def.sky_bottom);
-        glBindVertexArray(empty_vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(sky_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, sky_vbo);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(float)),
+                     triangles.data(), GL_STREAM_DRAW);
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size() / 2));
         glDepthMask(GL_TRUE);
         glDepthFunc(GL_LESS);
     }
@@ -189,25 +202,65 @@ struct Renderer::Impl {
                   const std::function<void()>& overlay, const PixelRect& view);
 };
 
+namespace
+{
+
+// A ground plane's grid: its unit normal, in-plane axes (the world axis least along the normal, made
+// perpendicular) and the corners, in order around it, of the square it is drawn on: around the
+// target's foot on the plane, past where the grid has faded into the sky.
+struct GridSquare {
+    Vec3 n, a0, a1;
+    Vec3 corners[4];
+};
+
+GridSquare grid_square(const render::View& view, const Vec3& normal, double offset)
+{
+    GridSquare g;
+    g.n = normalized(normal);
+    const Vec3 pick = std::abs(g.n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    g.a0 = normalized(pick - dot(pick, g.n) * g.n);
+    g.a1 = cross(g.n, g.a0);
+    const Vec3 foot = view.target - (dot(view.target, g.n) - offset) * g.n;
+    const double half = 14.0 * view.distance;
+    const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int i = 0; i < 4; ++i)
+        g.corners[i] = foot + half * corners[i][0] * g.a0 + half * corners[i][1] * g.a1;
+    return g;
+}
+
+// NDC triangles for the sky: the viewport less the grid's square when one plane has a grid (with
+// more, their squares' union is not convex and the sky covers the viewport).
+std::vector<float> sky_for(const render::View& view, const std::vector<std::pair<Vec3, double>>& grids,
+                           const PixelRect& rect)
+{
+    std::vector<render::ClipPoint> ground;
+    if (grids.size() == 1) {
+        const GridSquare g = grid_square(view, grids[0].first, grids[0].second);
+        const render::Mat4& m = view.view_proj;
+        for (const Vec3& c : g.corners) {
+            render::ClipPoint p{};
+            for (size_t r = 0; r < 4; ++r)
+                p[r] = m[r] * c.x + m[4 + r] * c.y + m[8 + r] * c.z + m[12 + r];
+            ground.push_back(p);
+        }
+    }
+    // One pixel into the square, so that the two edges' rounding leaves no gap.
+    return render::sky_triangles(ground, 2.0 / std::min(rect.width, rect.height));
+}
+
+} // namespace
+
 void Renderer::Impl::draw_grid(const World& world, const render::View& view, const Vec3& normal_in,
                                double offset, PoseSource poses)
 {
-    const Vec3 n = normalized(normal_in);
-    // In-plane axes: the world axis least along n, made perpendicular.
-    const Vec3 pick = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
-    const Vec3 a0 = normalized(pick - dot(pick, n) * n);
-    const Vec3 a1 = cross(n, a0);
+    const GridSquare g = grid_square(view, normal_in, offset);
+    const Vec3 &n = g.n, &a0 = g.a0, &a1 = g.a1;
     const Vec3 origin = offset * n;
-    // A square around the target's foot on the plane, past where the grid has faded into the sky.
-    const Vec3 foot = view.target - (dot(view.target, n) - offset) * n;
-    const double half = 14.0 * view.distance;
     float quad[12];
-    const double corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
-    for (int i = 0; i < 4; ++i) {
-        const Vec3 c = foot + half * corners[i][0] * a0 + half * corners[i][1] * a1;
+    const int strip[4] = {0, 1, 3, 2};
+    for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k)
-            quad[i * 3 + k] = static_cast<float>(c[k]);
-    }
+            quad[i * 3 + k] = static_cast<float>(g.corners[strip[i]][k]);
     // Minor lines at a power of ten near a tenth of the view distance; major lines every ten.
     const double spacing = std::pow(10.0, std::round(std::log10(view.distance))) / 10.0;
     const float axes[9] = {static_cast<float>(a0.x), static_cast<float>(a0.y), static_cast<float>(a0.z),
@@ -382,8 +435,10 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
             planes.emplace_back(Vec3{0, 1, 0}, 0.0);
         for (const auto& [normal, offset] : planes)
             draw_grid(world, view, normal, offset, poses);
+    } else {
+        planes.clear();
     }
-    draw_sky();
+    draw_sky(sky_for(view, planes, rect));
     glBindVertexArray(0);
     out.width = def.width;
     out.height = def.height;

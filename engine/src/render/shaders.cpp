@@ -8,13 +8,13 @@ namespace supermodal::render
 namespace
 {
 
-// Full-screen triangle from gl_VertexID; vertical gradient.
+// Triangles given in NDC at the far plane (the viewport less the ground grid); vertical gradient.
 const char* k_sky_vs = R"(#version 300 es
+layout(location = 0) in vec2 a_ndc;
 out float v_t;
 void main() {
-    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
-    v_t = p.y * 0.5 + 0.5;
-    gl_Position = vec4(p, 1.0, 1.0);
+    v_t = a_ndc.y * 0.5 + 0.5;
+    gl_Position = vec4(a_ndc, 1.0, 1.0);
 })";
 const char* k_sky_fs = R"(#version 300 es
 precision highp float;
