@@ -73,11 +73,13 @@ def plot(out_csv, lines):
         ms = {(r[5], r[4], int(r[7])): r[8] for r in lines}
         for r in lines:
             if int(r[7]) == 2:
-                label = f"{r[5].replace('.json', '')} {r[4]}\\n{ms[(r[5], r[4], 1)]} -> {r[8]} ms"
+                # Three short lines, so six or more bars keep their labels apart.
+                ms_1 = float(ms[(r[5], r[4], 1)])
+                label = f"{r[5].replace('.json', '')}\\n{r[4]}\\n{ms_1:.1f} -> {float(r[8]):.1f} ms"
                 f.write(f'"{label}" {r[10]}\n')
     png = out_csv[:-4] + ".png"
     script = f"""
-set terminal pngcairo size 900,480 font "Helvetica,11" noenhanced
+set terminal pngcairo size 1000,500 font "Helvetica,11" noenhanced
 set output "{png}"
 set style data histograms
 set style fill solid 0.8 border -1
@@ -86,7 +88,7 @@ set yrange [0:2.2]
 set ylabel "speed-up, 2 threads against 1 [-]"
 set title "Wall time per step, 1 and 2 threads (threads_bench, Release, 2-core VM)"
 set grid ytics
-set bmargin 4
+set bmargin 5
 unset key
 plot "{data}" using 2:xtic(1) lc rgb "#3d7cc9", 1 with lines dt 2 lc rgb "#888888"
 """
