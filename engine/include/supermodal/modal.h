@@ -57,7 +57,8 @@ struct LatticeDef {
 enum class ModalSolver : uint8_t {
     Auto,   ///< Dense up to k_dense_dof_limit degrees of freedom, sparse above.
     Dense,  ///< Eigen's dense generalized solver: every eigenpair; O(n³) time, O(n²) memory.
-    Sparse, ///< Spectra shift-invert Lanczos with a sparse LDLᵀ factorisation, only the lowest modes.
+    Sparse, ///< Shift-invert block Krylov iteration on CHOLMOD's sparse Cholesky (Spectra's Lanczos with a
+            ///< confirmation run where a run of equal frequencies is as wide as the block): the lowest modes.
 };
 /// Auto switches to the sparse solver above this many degrees of freedom.
 inline constexpr int k_dense_dof_limit = 300;
@@ -70,7 +71,9 @@ struct ModalBasisDef {
     double poisson = 0.3;    ///< Poisson's ratio ν [-], in (−1, 0.5).
     LatticeDef lattice{};    ///< Lattice resolution and element type.
     int mode_count = 12;     ///< Elastic modes kept, r ∈ [1, k_max_modes], or k_all_modes (every
-                             ///< elastic mode; dense; at most k_max_full_dofs); rigid modes never.
+                             ///< elastic mode; dense; at most k_max_full_dofs); rigid modes never. Where
+                             ///< the cut splits a run of equal frequencies the basis keeps the whole run
+                             ///< (up to k_max_modes), except with rest_offsets: then exactly this many.
     ModalSolver solver = ModalSolver::Auto;
     /// A moulded rest shape: per node of the lattice the def makes without them (node order of
     /// ModalBasis::node_positions), how far the rest shape has moved [m], shape frame. The same cells,
@@ -105,7 +108,8 @@ struct ModalDiagnostics {
     double rigid_ratio = 0.0;                  ///< max |rigid eigenvalue| / first elastic eigenvalue [-].
     double mass_orthonormality_error = 0.0;    ///< max |(Φᵀ M Φ − I)_ij| over the kept modes [-].
     bool splits_degenerate_cluster = false;    ///< Mode r and r+1 share a frequency (within 1e-6): which
-                                               ///< of the pair is kept is arbitrary.
+                                               ///< of the pair is kept is arbitrary (only with
+                                               ///< rest_offsets, which keep the count exact).
     bool sparse_solver = false;                ///< The sparse (Spectra + CHOLMOD) path ran.
     int solver_rounds = 0;         ///< Sparse path: runs that added modes (more than 1 = a Lanczos
                                    ///< confirmation run found missed copies of repeated frequencies).
@@ -139,7 +143,8 @@ struct ModalBasis {
                                       ///< with them, whose field modal_displacement extends to it.
     double density = 0.0, young = 0.0, poisson = 0.0; ///< The material it was built for (SI).
     double mass = 0.0;                  ///< Mass of the lattice model, Σ over its consistent mass [kg].
-    int mode_count = 0;                 ///< r, the elastic modes kept.
+    int mode_count = 0;                 ///< r, the elastic modes kept (more than asked where a run of
+                                        ///< equal frequencies was kept whole).
     std::vector<double> frequencies_hz; ///< (r) natural frequencies ω/2π, ascending [Hz].
     std::vector<ModeKind> kinds;        ///< (r) guess per mode.
     /// (node_count × 3 × r) mass-normalised mode shapes [1/√kg]: entry (node·3 + axis)·r + k.
