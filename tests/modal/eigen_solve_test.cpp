@@ -203,6 +203,30 @@ TEST(ModalEigenSolve, BlockIterationMatchesLanczosOnAMidSizeCube)
     EXPECT_GE(runs, 5);
 }
 
+namespace
+{
+
+// A soft ball of radius 0.3 m on 3³ cells (624 dofs): its low modes come in runs of 1, 2 and 3 equal
+// frequencies (a sphere's five-fold ones split by the lattice's cubic symmetry), and the dense solver
+// still checks it quickly.
+sm::ModalBasisDef small_ball_def()
+{
+    sm::ModalBasisDef def = sm::default_modal_basis_def();
+    def.shape.radii = {0.3, 0.3, 0.3};
+    def.young = 2e5;
+    def.lattice.cells = {3, 3, 3};
+    return def;
+}
+
+// The eigenvalue scale of small_ball_def(), E/(ρ·r²) [1/s²].
+double small_ball_scale()
+{
+    const sm::ModalBasisDef def = small_ball_def();
+    return def.young / (def.density * 0.36);
+}
+
+} // namespace
+
 TEST(ModalEigenSolve, TheCutNeverSplitsAClusterOfRepeatedFrequencies)
 {
     // A ball on a cubic lattice has two- and three-fold frequencies (a sphere's five-fold ones split by
@@ -212,14 +236,10 @@ TEST(ModalEigenSolve, TheCutNeverSplitsAClusterOfRepeatedFrequencies)
     // with one solver's pick, 8 mm/s with the whole run). The run is found on the dense spectrum; the
     // sparse paths match it within 1e-9 in ω² and 1e-6 in subspace angle, as in the tests above. 3³ cells
     // (624 dofs) keep the dense reference quick.
-    sm::ModalBasisDef def = sm::default_modal_basis_def();
-    def.shape.radii = {0.3, 0.3, 0.3};
-    def.young = 2e5;
-    def.lattice.cells = {3, 3, 3};
-    sm::Result<modal::LatticeModel> model = modal::assemble_lattice_model(def);
+    sm::Result<modal::LatticeModel> model = modal::assemble_lattice_model(small_ball_def());
     ASSERT_TRUE(model) << model.error().message();
     ASSERT_GT(model->dof_count(), sm::k_dense_dof_limit); // Auto would take the sparse path: room for it
-    const double scale = def.young / (def.density * 0.36);
+    const double scale = small_ball_scale();
     const sm::Result<modal::ModeSolution> all = modal::solve_modes(*model, 24, sm::ModalSolver::Dense, scale);
     ASSERT_TRUE(all) << all.error().message();
     // The first run of two or more equal frequencies past the first mode, ending below mode 24.
@@ -287,13 +307,9 @@ TEST(ModalEigenSolve, BlockPathKeepsTheDenseSetForEveryModeCountOnABall)
     // the dense solver (every eigenpair) for each count from 1 to 30 on the ball of 3³ cells (624 dofs),
     // whose 30 lowest modes come in runs of 1, 2 and 3: the same number of modes, the same frequencies
     // within 1e-9 (the dense/sparse agreement above), and the block set accepted, not the fallback.
-    sm::ModalBasisDef def = sm::default_modal_basis_def();
-    def.shape.radii = {0.3, 0.3, 0.3};
-    def.young = 2e5;
-    def.lattice.cells = {3, 3, 3};
-    sm::Result<modal::LatticeModel> model = modal::assemble_lattice_model(def);
+    sm::Result<modal::LatticeModel> model = modal::assemble_lattice_model(small_ball_def());
     ASSERT_TRUE(model) << model.error().message();
-    const double scale = def.young / (def.density * 0.36);
+    const double scale = small_ball_scale();
     const sm::Result<modal::ModeSolution> all = modal::solve_modes(*model, 40, sm::ModalSolver::Dense, scale);
     ASSERT_TRUE(all) << all.error().message();
     const Eigen::VectorXd& reference = all->eigenvalues;

@@ -80,6 +80,19 @@ void set_vec3(GLint loc, const Vec3& v)
     glUniform3f(loc, static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z));
 }
 
+// A vertex array and its buffer, left bound, with attribute 0 of `components` floats at the start of
+// each vertex of `stride` floats.
+void make_vertex_array(GLuint& vao, GLuint& vbo, int components, int stride)
+{
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, components, GL_FLOAT, GL_FALSE, stride * static_cast<GLsizei>(sizeof(float)),
+                          nullptr);
+}
+
 // One body's render-side state: which cached mesh, and a skin when it is modal.
 struct BodyEntry {
     std::string key;
@@ -124,25 +137,10 @@ struct Renderer::Impl {
             return s;
         if (Status s = render::compile_programs(programs); !s)
             return s;
-        glGenVertexArrays(1, &sky_vao);
-        glGenBuffers(1, &sky_vbo);
-        glBindVertexArray(sky_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, sky_vbo);
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-        glGenVertexArrays(1, &grid_vao);
-        glGenBuffers(1, &grid_vbo);
-        glBindVertexArray(grid_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, grid_vbo);
+        make_vertex_array(sky_vao, sky_vbo, 2, 2);
+        make_vertex_array(grid_vao, grid_vbo, 3, 3);
         glBufferData(GL_ARRAY_BUFFER, 4 * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-        glGenVertexArrays(1, &shadow_vao);
-        glGenBuffers(1, &shadow_vbo);
-        glBindVertexArray(shadow_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, shadow_vbo);
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        make_vertex_array(shadow_vao, shadow_vbo, 3, 6);
         glEnableVertexAttribArray(1);
         glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                               reinterpret_cast<const void*>(3 * sizeof(float)));
