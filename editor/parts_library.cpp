@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <system_error>
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
@@ -75,6 +76,61 @@ Result<uint64_t> file_content_hash(const std::string& path)
     return h;
 }
 
+namespace
+{
+
+// Includes nest at most this deep when a part's key is made (the loader refuses deeper ones anyway).
+constexpr int k_max_key_depth = 16;
+
+// FNV-1a 64 of a file's bytes, then of the keys of the files its scene reads in the order it names
+// them ("include" files, bodies' "mesh" files), relative to its folder. A reference that cannot be
+// read or parsed adds nothing: loading the part reports it.
+uint64_t part_key(const fs::path& path, int depth)
+{
+    Result<uint64_t> own = file_content_hash(path.string());
+    if (!own)
+        return 0;
+    uint64_t h = *own;
+    if (depth >= k_max_key_depth)
+        return h;
+    std::ifstream in(path, std::ios::binary);
+    const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+    if (!doc.is_object())
+        return h;
+    auto mix = [&h](uint64_t x) {
+        for (int i = 0; i < 8; ++i) {
+            h ^= (x >> (8 * i)) & 0xff;
+            h *= 1099511628211ull;
+        }
+    };
+    auto refer = [&](const nlohmann::json& list, const char* key, bool nested) {
+        if (!list.is_array())
+            return;
+        for (const nlohmann::json& item : list)
+            if (item.is_object() && item.contains(key) && item[key].is_string()) {
+                const fs::path child = path.parent_path() / item[key].get<std::string>();
+                if (nested) {
+                    mix(part_key(child, depth + 1));
+                } else {
+                    const Result<uint64_t> mesh = file_content_hash(child.string());
+                    mix(mesh ? *mesh : 0);
+                }
+            }
+    };
+    if (doc.contains("include"))
+        refer(doc["include"], "file", true);
+    if (doc.contains("bodies"))
+        refer(doc["bodies"], "mesh", false);
+    return h;
+}
+
+} // namespace
+
+uint64_t part_content_hash(const std::string& path)
+{
+    return part_key(fs::path(path), 0);
+}
+
 Status PartsLibrary::scan(const std::string& folder, const ThumbnailDef& def)
 {
     if (!(def.size >= 16 && def.size <= 1024))
@@ -87,10 +143,9 @@ Status PartsLibrary::scan(const std::string& folder, const ThumbnailDef& def)
         PartEntry e;
         e.path = f.path().string();
         e.label = f.path().stem().string();
-        Result<uint64_t> hash = file_content_hash(e.path);
-        if (!hash)
+        if (Result<uint64_t> hash = file_content_hash(e.path); !hash)
             return hash.error();
-        e.hash = *hash;
+        e.hash = part_content_hash(e.path);
         entries.push_back(std::move(e));
     }
     if (ec)

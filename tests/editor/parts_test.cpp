@@ -3,6 +3,7 @@
 // added part, an attach and a detach back exactly; thumbnails show their part and come from the disk
 // cache the second time; the panel's drag drops a part on the surface under the pointer; bad script
 // arguments name the action and key.
+#include "parts_library.h"
 #include "render_hook.h"
 #include "script.h"
 #include "session.h"
@@ -270,6 +271,31 @@ TEST(EditorParts, BadArgumentsNameTheActionAndKeyAndChangeNothing)
         EXPECT_EQ(s.history().size(), edits);
         EXPECT_EQ(s.scene().bodies.size(), 2u);
     }
+}
+
+TEST(EditorParts, AThumbnailKeyChangesWithTheFilesThePartIncludes)
+{
+    // A part that includes another file and names a render mesh: its key (the thumbnail cache's file
+    // name) must change when either changes, not only when the part's own bytes do, and must not
+    // change when nothing does.
+    const fs::path dir = fs::path(::testing::TempDir()) / "parts_key";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    auto write = [](const fs::path& p, const std::string& text) { std::ofstream(p) << text; };
+    write(dir / "part.json", R"({"include": [{"file": "sub/inner.json"}], "bodies": [{"mesh": "m.obj"}]})");
+    write(dir / "sub" / "inner.json", R"({"bodies": []})");
+    write(dir / "m.obj", "v 0 0 0\n");
+    const std::string part = (dir / "part.json").string();
+    const uint64_t first = ed::part_content_hash(part);
+    EXPECT_EQ(ed::part_content_hash(part), first);
+    write(dir / "sub" / "inner.json", R"({"bodies": [ ]})");
+    const uint64_t after_include = ed::part_content_hash(part);
+    EXPECT_NE(after_include, first);
+    write(dir / "m.obj", "v 0 0 1\n");
+    EXPECT_NE(ed::part_content_hash(part), after_include);
+    // A missing reference is not an error here (loading the part reports it); the key still differs.
+    fs::remove(dir / "m.obj");
+    EXPECT_NE(ed::part_content_hash(part), after_include);
 }
 
 #ifdef SM_HAS_RENDER
