@@ -178,8 +178,10 @@ void TradeSweep::stop()
 {
     {
         const std::lock_guard lock(m_mutex);
+        // SIGKILL, not SIGTERM: the bench child keeps nothing to clean up, and stop() then joins the
+        // reading thread, which must not wait on a child that could catch or block a gentler signal.
         if (m_child > 0)
-            kill(m_child, SIGTERM);
+            kill(m_child, SIGKILL);
     }
     wait();
 }
