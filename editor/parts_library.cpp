@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 #include <system_error>
 
 #ifdef SUPERMODAL_EDITOR_HAS_RENDER
@@ -58,22 +60,37 @@ void write_cached(const ThumbnailDef& def, const PartEntry& e)
 }
 #endif
 
+constexpr uint64_t k_fnv_offset = 1469598103934665603ull; // FNV-1a 64: offset basis and prime
+constexpr uint64_t k_fnv_prime = 1099511628211ull;
+
+uint64_t fnv_bytes(uint64_t h, const char* bytes, size_t count)
+{
+    for (size_t i = 0; i < count; ++i) {
+        h ^= static_cast<unsigned char>(bytes[i]);
+        h *= k_fnv_prime;
+    }
+    return h;
+}
+
+// The file's bytes, or nothing when it cannot be read.
+std::optional<std::string> read_file(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return std::move(text).str();
+}
+
 } // namespace
 
 Result<uint64_t> file_content_hash(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    const std::optional<std::string> bytes = read_file(path);
+    if (!bytes)
         return Error{path, "", "cannot read the file"};
-    uint64_t h = 1469598103934665603ull; // FNV-1a 64: offset basis and prime
-    char buffer[4096];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
-            h ^= static_cast<unsigned char>(buffer[i]);
-            h *= 1099511628211ull;
-        }
-    }
-    return h;
+    return fnv_bytes(k_fnv_offset, bytes->data(), bytes->size());
 }
 
 namespace
@@ -83,25 +100,22 @@ namespace
 constexpr int k_max_key_depth = 16;
 
 // FNV-1a 64 of a file's bytes, then of the keys of the files its scene reads in the order it names
-// them ("include" files, bodies' "mesh" files), relative to its folder. A reference that cannot be
-// read or parsed adds nothing: loading the part reports it.
-uint64_t part_key(const fs::path& path, int depth)
+// them ("include" files, bodies' "mesh" files), relative to its folder; nothing when the file cannot be
+// read. A reference that cannot be read or parsed adds a zero: loading the part reports it.
+std::optional<uint64_t> part_key(const fs::path& path, int depth)
 {
-    Result<uint64_t> own = file_content_hash(path.string());
-    if (!own)
-        return 0;
-    uint64_t h = *own;
-    if (depth >= k_max_key_depth)
-        return h;
-    std::ifstream in(path, std::ios::binary);
-    const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-    if (!doc.is_object())
+    const std::optional<std::string> bytes = read_file(path.string());
+    if (!bytes)
+        return std::nullopt;
+    uint64_t h = fnv_bytes(k_fnv_offset, bytes->data(), bytes->size());
+    const nlohmann::json doc = nlohmann::json::parse(*bytes, nullptr, false);
+    if (depth >= k_max_key_depth || !doc.is_object())
         return h;
     auto mix = [&h](uint64_t x) {
-        for (int i = 0; i < 8; ++i) {
-            h ^= (x >> (8 * i)) & 0xff;
-            h *= 1099511628211ull;
-        }
+        char le[8];
+        for (int i = 0; i < 8; ++i)
+            le[i] = static_cast<char>((x >> (8 * i)) & 0xff);
+        h = fnv_bytes(h, le, sizeof le);
     };
     auto refer = [&](const nlohmann::json& list, const char* key, bool nested) {
         if (!list.is_array())
@@ -110,7 +124,7 @@ uint64_t part_key(const fs::path& path, int depth)
             if (item.is_object() && item.contains(key) && item[key].is_string()) {
                 const fs::path child = path.parent_path() / item[key].get<std::string>();
                 if (nested) {
-                    mix(part_key(child, depth + 1));
+                    mix(part_key(child, depth + 1).value_or(0));
                 } else {
                     const Result<uint64_t> mesh = file_content_hash(child.string());
                     mix(mesh ? *mesh : 0);
@@ -126,9 +140,11 @@ uint64_t part_key(const fs::path& path, int depth)
 
 } // namespace
 
-uint64_t part_content_hash(const std::string& path)
+Result<uint64_t> part_content_hash(const std::string& path)
 {
-    return part_key(fs::path(path), 0);
+    if (std::optional<uint64_t> key = part_key(fs::path(path), 0))
+        return *key;
+    return Error{path, "", "cannot read the file"};
 }
 
 Status PartsLibrary::scan(const std::string& folder, const ThumbnailDef& def)
@@ -143,9 +159,10 @@ Status PartsLibrary::scan(const std::string& folder, const ThumbnailDef& def)
         PartEntry e;
         e.path = f.path().string();
         e.label = f.path().stem().string();
-        if (Result<uint64_t> hash = file_content_hash(e.path); !hash)
+        Result<uint64_t> hash = part_content_hash(e.path);
+        if (!hash)
             return hash.error();
-        e.hash = part_content_hash(e.path);
+        e.hash = *hash;
         entries.push_back(std::move(e));
     }
     if (ec)

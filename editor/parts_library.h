@@ -63,7 +63,8 @@ class PartsLibrary
 
 /// A part file's thumbnail key: its bytes' hash mixed with the keys of the files its scene reads
 /// (includes, recursively, and render meshes), so a thumbnail is drawn again when any of them changes.
-[[nodiscard]] uint64_t part_content_hash(const std::string& path);
+/// Fails when the part file itself cannot be read.
+[[nodiscard]] Result<uint64_t> part_content_hash(const std::string& path);
 
 /// Draws a part file's bodies offscreen at size × size pixels, framed from the default orbit camera's
 /// angles (yaw 30°, pitch 20°), without the ground grid; into `entry`'s pixels. Fails without the

@@ -501,14 +501,25 @@ void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
         solve_pair_rows(sp, rows, use_bias, AnySides{});
 }
 
+// A pair's summed normal impulse [N·s] and friction impulse on a [N·s], world.
+void pair_impulses(const SoftPair& sp, const SoftContacts& rows, double& out_normal, Vec3& out_friction)
+{
+    out_normal = 0.0;
+    out_friction = Vec3{};
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        const SoftPoint& p = rows.points[sp.first + i];
+        out_normal += p.normal_impulse;
+        out_friction += p.tangent_impulse[0] * p.tangent[0] + p.tangent_impulse[1] * p.tangent[1];
+    }
+}
+
 // What world_contacts() reports for a solved pair: the impulse-weighted point, the summed force.
 ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContacts& rows, double& out_normal,
                       Vec3& out_friction)
 {
     Vec3 centroid{}, normal_sum{}, force{};
     double weight = 0.0, deepest = 0.0;
-    out_normal = 0.0;
-    out_friction = Vec3{};
+    pair_impulses(sp, rows, out_normal, out_friction);
     for (uint32_t i = 0; i < sp.count; ++i) {
         const SoftPoint& p = rows.points[sp.first + i];
         const double w = p.normal_impulse + 1e-12; // untouched pairs still get a centroid
@@ -516,8 +527,6 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
         normal_sum += w * p.normal;
         weight += w;
         deepest = std::max(deepest, p.depth);
-        out_normal += p.normal_impulse;
-        out_friction += p.tangent_impulse[0] * p.tangent[0] + p.tangent_impulse[1] * p.tangent[1];
     }
     force = out_normal * normalized(normal_sum) + out_friction;
     return {.a = pair.a,
@@ -723,13 +732,9 @@ void advance_soft_separations(SoftContacts& io)
         // let a block pulled well under μ·m·g creep at 0.27 mm/s (measured). Pairs with a modal body keep
         // the point's rule: with the pair's, an elastic block pressed straight down slid 0.14 mm, not 0.05.
         if (sp.sliding && rigid_rows(sp, io)) {
-            Vec3 friction{};
             double normal = 0.0;
-            for (uint32_t i = 0; i < sp.count; ++i) {
-                const SoftPoint& p = io.points[sp.first + i];
-                friction += p.tangent_impulse[0] * p.tangent[0] + p.tangent_impulse[1] * p.tangent[1];
-                normal += p.normal_impulse;
-            }
+            Vec3 friction{};
+            pair_impulses(sp, io, normal, friction);
             sp.sliding = length(friction) >= k_pair_slide_fraction * sp.friction * normal;
         }
         if (sp.sliding) {
