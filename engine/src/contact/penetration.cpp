@@ -5,6 +5,7 @@
 #include "geometry/support_internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace supermodal
@@ -16,6 +17,10 @@ namespace
 // quarter of its length (flat faces make the map from normal to support point steep).
 constexpr double k_max_turn = 0.25;
 constexpr double k_shrink = 0.25;
+// Face planes farther than this from the normal (|n·e|) are left to Newton's own steps [-].
+constexpr double k_kink_reach = 0.2;
+// Two face planes closer to parallel than this (sine of their angle) are not told apart [-].
+constexpr double k_kink_min_sine = 0.1;
 
 // One body's support along a world direction, relative to `origin` (A's position, so that far-away
 // pairs lose no digits), with its world Jacobian.
@@ -59,6 +64,8 @@ struct Sample {
     Vec3 step{};              // Newton's turn of n, tangent [rad]
     bool solvable = false;    // the 2×2 system was regular (ray: and w points along +u)
     double decrease = 0.0;    // least overlap: the overlap Newton's full step is predicted to remove [m]
+    Vec3 t1{}, t2{};          // least overlap: the tangent basis of the gradient and Hessian below
+    double g1 = 0.0, g2 = 0.0, h11 = 0.0, h12 = 0.0, h22 = 0.0;
 };
 
 Sample evaluate(Query& q, const Vec3& n)
@@ -84,6 +91,13 @@ Sample evaluate(Query& q, const Vec3& n)
         const double h11 = dot(t1, jt1) - s.f, h12 = dot(t1, jt2), h22 = dot(t2, jt2) - s.f;
         const double det = h11 * h22 - h12 * h12;
         s.residual = std::hypot(g1, g2);
+        s.t1 = t1;
+        s.t2 = t2;
+        s.g1 = g1;
+        s.g2 = g2;
+        s.h11 = h11;
+        s.h12 = h12;
+        s.h22 = h22;
         if (!(h11 > 0.0) || !(det > 0.0) || !std::isfinite(det))
             return s;
         s.step = (-(h22 * g1 - h12 * g2) / det) * t1 + (-(h11 * g2 - h12 * g1) / det) * t2;
@@ -108,6 +122,92 @@ bool improves(const Query& q, const Sample& next, const Sample& cur)
     if (!(next.f > 0.0))
         return true;
     return q.target == PenetrationTarget::LeastOverlap ? next.f < cur.f : next.residual < cur.residual;
+}
+
+// A flat-faced superquadric's support function h(d) grows as C·|d·e|^q across the plane d·e = 0 of
+// each face axis e, with q = 2/(2 − ε) < 2 (its face exponent ε < 1): its curvature there is
+// infinite, and Newton's quadratic model, fitted where the curvature is finite, overshoots across the
+// plane by (2 − q)/(q − 1) times its distance (4.7× at ε = 0.3). A rounded corner on a rounded edge
+// has its least overlap just off one such plane, an edge on an edge near the line where two meet;
+// there Newton zigzags until its budget runs out (measured on a resting pile: 85% of the failed
+// searches had the normal within 1e-3 of a face plane).
+struct Kink {
+    Vec3 axis{};      // the face axis e (unit, world)
+    double q = 2.0;   // exponent of |d·e| in h [-]
+    double tau = 0.0; // n·e at the current normal [-]
+};
+
+// The face planes nearest to n (within k_kink_reach), at most two and not nearly parallel; returns
+// how many.
+int nearest_kinks(const Query& q, const Vec3& n, std::array<Kink, 2>& out)
+{
+    std::array<Kink, 6> all;
+    int count = 0;
+    for (int body = 0; body < 2; ++body) {
+        const ShapeDef& shape = (body == 0 ? q.a : q.b)->collider->shape;
+        const Mat3& r = body == 0 ? q.ra : q.rb;
+        for (int k = 0; k < 3; ++k) {
+            const double eps = k == 2 ? shape.epsilon1 : shape.epsilon2;
+            const Vec3 e{r.m[0][k], r.m[1][k], r.m[2][k]};
+            const double tau = dot(n, e);
+            if (eps < 1.0 && std::abs(tau) < k_kink_reach && tau != 0.0)
+                all[static_cast<size_t>(count++)] = {e, 2.0 / (2.0 - eps), tau};
+        }
+    }
+    for (int i = 1; i < count; ++i) // insertion sort by |τ| (at most six)
+        for (int j = i; j > 0 && std::abs(all[static_cast<size_t>(j)].tau) <
+                                     std::abs(all[static_cast<size_t>(j - 1)].tau);
+             --j)
+            std::swap(all[static_cast<size_t>(j)], all[static_cast<size_t>(j - 1)]);
+    int found = 0;
+    for (int i = 0; i < count && found < 2; ++i)
+        if (found == 0 || length(cross(out[0].axis, all[static_cast<size_t>(i)].axis)) > k_kink_min_sine)
+            out[static_cast<size_t>(found++)] = all[static_cast<size_t>(i)];
+    return found;
+}
+
+// Where s·τ + C·|τ|^q is least, with s and C fitted to the slope and curvature at τ0 ≠ 0; NaN when the
+// curvature is not positive.
+double power_law_target(double tau0, double q, double slope, double curvature)
+{
+    if (!(curvature > 0.0))
+        return std::nan("");
+    const double t0 = std::abs(tau0), sign0 = tau0 > 0.0 ? 1.0 : -1.0;
+    const double cq = curvature * std::pow(t0, 2.0 - q) / (q - 1.0); // C·q
+    const double linear = slope - cq * std::pow(t0, q - 1.0) * sign0;
+    const double target = (linear > 0.0 ? -1.0 : 1.0) * std::pow(std::abs(linear) / cq, 1.0 / (q - 1.0));
+    return std::clamp(target, -1.0, 1.0);
+}
+
+// The step that places each coordinate τ_k = n·e_k of the nearest face planes where its power law is
+// least (one plane: Newton's step along it), the cross terms of the Hessian left out. The coordinates
+// are (u₁·δ, u₂·δ) of a tangent step δ, u = e's tangent part (one plane: u₂ the unit tangent ⊥ u₁).
+bool kink_step(const Sample& cur, const std::array<Kink, 2>& kinks, int count, Vec3& out)
+{
+    auto tangent = [&](const Vec3& v) { return v - dot(v, cur.n) * cur.n; };
+    const Vec3 u1 = tangent(kinks[0].axis);
+    const Vec3 u2 = count == 2 ? tangent(kinks[1].axis) : normalized(cross(cur.n, u1));
+    // M maps the basis coordinates (t1, t2) of δ to (τ₁, τ₂); gradient and Hessian go by M⁻ᵀ.
+    const double m11 = dot(u1, cur.t1), m12 = dot(u1, cur.t2), m21 = dot(u2, cur.t1), m22 = dot(u2, cur.t2);
+    const double det = m11 * m22 - m12 * m21;
+    if (!(std::abs(det) > 0.0))
+        return false;
+    // Rows of M⁻ᵀ: the τ-gradient of t1 and t2 coordinates.
+    const double i11 = m22 / det, i12 = -m21 / det, i21 = -m12 / det, i22 = m11 / det; // (M⁻¹)ᵀ
+    const double g1 = i11 * cur.g1 + i12 * cur.g2, g2 = i21 * cur.g1 + i22 * cur.g2;
+    // Diagonal of M⁻ᵀ H M⁻¹: column k of M⁻¹ is (i1k, i2k) in the (t1, t2) basis.
+    auto curvature = [&](double a, double b) {
+        return cur.h11 * a * a + 2.0 * cur.h12 * a * b + cur.h22 * b * b;
+    };
+    const double c1 = curvature(i11, i12), c2 = curvature(i21, i22);
+    const double d1 = power_law_target(kinks[0].tau, kinks[0].q, g1, c1) - kinks[0].tau;
+    const double d2 = count == 2 ? power_law_target(kinks[1].tau, kinks[1].q, g2, c2) - kinks[1].tau
+                                 : (c2 > 0.0 ? -g2 / c2 : 0.0);
+    // δ = M⁻¹ (d1, d2) in the (t1, t2) basis.
+    const Vec3 step = (i11 * d1 + i21 * d2) * cur.t1 + (i12 * d1 + i22 * d2) * cur.t2;
+    const double len = length(step);
+    out = normalized(cur.n + (len > k_max_turn ? k_max_turn / len : 1.0) * step);
+    return is_finite(out);
 }
 
 Penetration result_of(const Query& q, const Sample& s, bool converged)
@@ -137,6 +237,7 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
     tangent_basis(q.u, q.e1, q.e2);
     Sample cur = evaluate(q, normalized(start));
     double turn = k_max_turn;
+    bool kink_failed = false;
     while (true) {
         if (!(cur.f > 0.0)) // a separating direction: no contact, exactly
             return result_of(q, cur, true);
@@ -149,10 +250,26 @@ Penetration refine_penetration(const BodyView& a, const BodyView& b, const Vec3&
         if (q.calls >= 2 * max_evaluations)
             return result_of(q, cur, false);
         const double scale = len > turn ? turn / len : 1.0;
-        const Sample next = evaluate(q, normalized(cur.n + scale * cur.step));
+        Vec3 trial = normalized(cur.n + scale * cur.step);
+        bool by_kink = false;
+        if (q.target == PenetrationTarget::LeastOverlap && !kink_failed) {
+            // Newton's step across a face plane overshoots: the plane's own model places it.
+            std::array<Kink, 2> kinks;
+            const int count = nearest_kinks(q, cur.n, kinks);
+            bool crosses = false;
+            for (int i = 0; i < count; ++i)
+                crosses |= (dot(trial, kinks[static_cast<size_t>(i)].axis) > 0.0) !=
+                           (kinks[static_cast<size_t>(i)].tau > 0.0);
+            if (crosses)
+                by_kink = kink_step(cur, kinks, count, trial);
+        }
+        const Sample next = evaluate(q, trial);
         if (improves(q, next, cur)) {
             cur = next;
             turn = k_max_turn;
+            kink_failed = false;
+        } else if (by_kink) {
+            kink_failed = true;
         } else {
             turn = k_shrink * std::min(len, turn);
         }
