@@ -217,4 +217,62 @@ TEST(FaceContact, APairApartTriesItsSeparatingFaceFirst)
     EXPECT_GT(sm::length(m.normal), 0.5);
     EXPECT_EQ(sm::collide_manifold(a, b, m, pts, false, &second), 0);
     EXPECT_EQ(second.support_calls, 1);
+    // That query proved them apart: unmoved, the next one is free.
+    sm::QueryCost third;
+    EXPECT_EQ(sm::collide_manifold(a, b, m, pts, false, &third), 0);
+    EXPECT_EQ(third.support_calls, 0);
+}
+
+TEST(FaceContact, AProofOfBeingApartSkipsOnlyQueriesThatWouldFindTheSame)
+{
+    // Two rounded boxes 4 mm apart drift together and turn a little each step (random small motions,
+    // 300 steps, they end up touching): a query kept by its proof of being apart gives the same manifold
+    // (normal, points, bit for bit) and the same contact points as the same query with the proof
+    // dropped, while it saves evaluations. A reshaped body (another collider) voids the proof.
+    Rng rng;
+    const sm::Collider box = box_collider(0.05, 0.3), bigger = box_collider(0.06, 0.3);
+    sm::Vec3 pa{0.125, 0.003, 0.0};
+    sm::Quat qb{std::cos(0.1), 0.0, std::sin(0.1), 0.0}, qa{};
+    sm::PairManifold kept, fresh;
+    int saved = 0, skipped = 0;
+    for (int step = 0; step < 300; ++step) {
+        pa = pa + sm::Vec3{-9e-5 + 2e-5 * rng.next(), 1e-5 * rng.next(), 1e-5 * rng.next()};
+        qa = sm::normalized(
+            sm::quat_from_rotation_vector({1e-4 * rng.next(), 1e-4 * rng.next(), 1e-4 * rng.next()}) * qa);
+        const sm::BodyView a = view(box, pa, qa), b = view(box, {}, qb);
+        fresh.apart = {};
+        std::vector<sm::ContactPoint> with_proof, without;
+        sm::QueryCost cost_kept, cost_fresh;
+        const int n_kept = sm::collide_manifold(a, b, kept, with_proof, true, &cost_kept);
+        const int n_fresh = sm::collide_manifold(a, b, fresh, without, true, &cost_fresh);
+        ASSERT_EQ(n_kept, n_fresh) << "step " << step;
+        ASSERT_EQ(kept.count, fresh.count) << "step " << step;
+        ASSERT_EQ(kept.normal, fresh.normal) << "step " << step;
+        for (int i = 0; i < kept.count; ++i) {
+            EXPECT_EQ(kept.points[static_cast<size_t>(i)].local_a,
+                      fresh.points[static_cast<size_t>(i)].local_a);
+            EXPECT_EQ(kept.points[static_cast<size_t>(i)].local_b,
+                      fresh.points[static_cast<size_t>(i)].local_b);
+        }
+        for (size_t i = 0; i < with_proof.size(); ++i) {
+            EXPECT_EQ(with_proof[i].point, without[i].point);
+            EXPECT_EQ(with_proof[i].depth, without[i].depth);
+        }
+        saved += cost_fresh.support_calls - cost_kept.support_calls;
+        skipped += cost_kept.support_calls == 0 && cost_fresh.support_calls > 0 ? 1 : 0;
+    }
+    EXPECT_GT(kept.count, 0); // they touch in the end
+    EXPECT_GT(skipped, 50);
+    EXPECT_GT(saved, 50);
+    // Unmoved and apart: proven, then free; reshaped A: evaluated again.
+    sm::PairManifold m;
+    std::vector<sm::ContactPoint> pts;
+    const sm::BodyView a = view(box, {0.11, 0, 0}), b = view(box, {}, qb);
+    sm::QueryCost first, second, reshaped;
+    (void)sm::collide_manifold(a, b, m, pts, true, &first);
+    (void)sm::collide_manifold(a, b, m, pts, true, &first);
+    (void)sm::collide_manifold(a, b, m, pts, true, &second);
+    EXPECT_EQ(second.support_calls, 0);
+    (void)sm::collide_manifold(view(bigger, {0.11, 0, 0}), b, m, pts, true, &reshaped);
+    EXPECT_GT(reshaped.support_calls, 0);
 }

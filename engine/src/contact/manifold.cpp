@@ -297,17 +297,63 @@ double overlap_along(const BodyView& a, const BodyView& b, const Vec3& n, int& c
     return extent_along(b, n, calls) + extent_along(a, -1.0 * n, calls);
 }
 
+// Largest distance of a body's surface from its centre of mass [m]: its support function changes by at
+// most this times the turn of the direction (in radians, for small turns the chord).
+double reach(const Collider& c)
+{
+    const Vec3 far{std::max(std::abs(c.local_box.min.x), std::abs(c.local_box.max.x)),
+                   std::max(std::abs(c.local_box.min.y), std::abs(c.local_box.max.y)),
+                   std::max(std::abs(c.local_box.min.z), std::abs(c.local_box.max.z))};
+    return length(far);
+}
+
+// Relative round-off allowed in a proof's bound, of the positions' and bodies' scale [-].
+constexpr double k_proof_round_off = 1e-12;
+
+// Whether the pair's proof still holds: the overlap along the normal, n·(B's offset in A's frame) plus
+// each body's extent along it, can have grown since by at most the offset's change along n plus B's
+// reach times the normal's turn in B's frame (A's extent along its own frame's normal is unchanged).
+bool still_apart(const BodyView& a, const BodyView& b, const PairManifold& io, double gap)
+{
+    const PairManifold::ApartProof& p = io.apart;
+    if (p.a != a.collider || p.b != b.collider || !(p.normal == io.normal))
+        return false;
+    const Vec3 offset = to_body(a, b.position);
+    const Vec3 normal_b = inv_rotate(b.orientation, rotate(a.orientation, io.normal));
+    const double reach_b = reach(*b.collider);
+    const double scale = length(a.position) + length(b.position) + reach(*a.collider) + reach_b;
+    const double bound = p.overlap + dot(io.normal, offset - p.offset) +
+                         reach_b * length(normal_b - p.normal_b) + k_proof_round_off * scale;
+    return bound < -gap;
+}
+
+void prove_apart(const BodyView& a, const BodyView& b, double overlap, PairManifold& io)
+{
+    io.apart = {a.collider,
+                b.collider,
+                io.normal,
+                to_body(a, b.position),
+                inv_rotate(b.orientation, rotate(a.orientation, io.normal)),
+                overlap};
+}
+
 // Two bodies with face patches (face_contact.h). A pair found apart at the last substep first tries the
-// direction that separated it (two evaluations). Returns the points appended, or −1 when the general
-// path must decide.
+// direction that separated it (two evaluations, none while its proof holds). Returns the points
+// appended, or −1 when the general path must decide.
 int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculative, PairManifold& io,
                   std::vector<ContactPoint>& out, int& calls)
 {
     const double gap = speculative ? k_separate_rel * r : 0.0;
     const Vec3 stored = rotate(a.orientation, io.normal);
     const bool has_normal = length(io.normal) > 0.0;
-    if (io.count == 0 && has_normal && !(overlap_along(a, b, stored, calls) > -gap))
-        return 0; // still apart along it
+    if (io.count == 0 && has_normal) {
+        if (still_apart(a, b, io, gap))
+            return 0;
+        if (const double overlap = overlap_along(a, b, stored, calls); !(overlap > -gap)) {
+            prove_apart(a, b, overlap, io);
+            return 0; // still apart along it
+        }
+    }
     const Vec3 guess = has_normal ? stored : body_shape_centre(a) - body_shape_centre(b);
     const FaceContact fc =
         face_contact(a, b, normalized(guess), gap, speculative ? k_face_patch_rel * r : 0.0);

@@ -36,6 +36,18 @@ struct PairManifold {
     /// The pair's normal (from B towards A) in A's body frame, where the next substep's search starts
     /// (contact/penetration.h). Unit for a body pair, zero for a plane pair.
     Vec3 normal{};
+    /// A cache, not state (neither hashed nor saved: a restored world proves it again): the two bodies
+    /// of face-patch shapes found apart along `normal`, and the relative pose then. While the motion
+    /// since cannot have closed that gap, the query is skipped; it would have found them apart along
+    /// the same normal and changed nothing, so the result is the same bit for bit.
+    struct ApartProof {
+        const Collider* a = nullptr; ///< The colliders it holds for (a reshaped body gets another).
+        const Collider* b = nullptr;
+        Vec3 normal{};        ///< The manifold's normal it was made for, A's frame.
+        Vec3 offset{};        ///< B's position minus A's [m], A's frame.
+        Vec3 normal_b{};      ///< The normal in B's frame [-].
+        double overlap = 0.0; ///< The overlap along the normal [m], at most −(the kept gap).
+    } apart{};
 };
 
 /// Updates the manifold of two convex bodies (A = the pair's first body) and appends its touching
