@@ -23,6 +23,7 @@ namespace
 
 namespace fs = std::filesystem;
 
+#ifdef SUPERMODAL_EDITOR_HAS_RENDER
 std::string cache_file(const ThumbnailDef& def, const PartEntry& e)
 {
     char name[64];
@@ -30,7 +31,6 @@ std::string cache_file(const ThumbnailDef& def, const PartEntry& e)
     return (fs::path(def.cache_dir) / name).string();
 }
 
-#ifdef SUPERMODAL_EDITOR_HAS_RENDER
 bool read_cached(const ThumbnailDef& def, PartEntry& e)
 {
     if (def.cache_dir.empty())
