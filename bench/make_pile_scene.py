@@ -70,7 +70,7 @@ else:
             "comment": f"Pile protocol (docs/contact.md) on the penalty solver, {n} ellipsoids falling into an "
                        "open box; written by bench/make_pile_scene.py.",
             "settings": {"dt": 1.0 / 240.0, "duration": 3.0, "contact": {"solver": "penalty"}},
-            "materials": {"plastic": {"density": 1000, "friction": 0.5}}}
+            "materials": {"plastic": {"density": 1000, "friction": 0.5, "rolling_resistance": 0.001}}}
 # One body per line keeps the file short and its diffs readable.
 lines = [json.dumps(head)[:-1] + ', "bodies": [']
 lines += ["  " + json.dumps(b) + ("," if i + 1 < len(bodies) else "") for i, b in enumerate(bodies)]

@@ -56,11 +56,14 @@ struct Pinned {
 // (4 vectors a step) instead of single-vector Lanczos, so the board's modes differ in their last bits
 // (ω² within 1e-10, as ModalEigenSolve checks). Both runs compared over all 400 steps: positions within
 // 1.4e-13 m, velocities within 8e-12 m/s, angular velocities within 1.4e-10 rad/s.
+// Pile, 2026-12-03 (later still): ellipsoid pairs take the Newton search's normal from their last one
+// (MPR only to start), and the sample's plastic has a rolling resistance of 1 mm (with the exact normal
+// one ellipsoid was left rolling on the floor at 0.17 m/s after 4 s; PileSample.SettlesInsideTheBox).
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0x939c2f03270ad461ULL},
     {"chair_with_dummy", 500, 0x870e13b924933f4eULL},
     {"ball_on_board", 400, 0x762c42099125c181ULL},
-    {"pile", 240, 0xf70ec8ba52f26022ULL},
+    {"pile", 240, 0x41e0c5a53a3ebeedULL},
 };
 
 class PinnedHash : public testing::TestWithParam<Pinned>
