@@ -1,10 +1,14 @@
 // Tests for ContactDef::deformed_inside_test (contact/narrowphase.cpp with world/modal_system.cpp): sampled
 // points tested against a modal body meet its deformed shape, so both bodies' dents count.
+#include "contact/narrowphase.h"
+#include "modal/inverse_map.h"
 #include "supermodal/body.h"
 #include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
+#include "world/modal_system.h"
+#include "world/world_impl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -235,4 +239,72 @@ TEST(DeformedContact, RigidScenesStepBitIdenticallyWithIt)
         on->step();
     }
     EXPECT_EQ(on->state_hash(), off->state_hash());
+}
+
+TEST(DeformedContact, TheNarrowphaseHookIsBodyPointTestAndFallsBackToTheRestShape)
+{
+    // The hook the narrowphase calls (world/modal_system.cpp) gives what body_point_test gives, to the
+    // bit, on a bent board; where Newton fails (a folded field) it gives the rest shape's test; a rigid
+    // body has none (the narrowphase keeps test_point).
+    sm::WorldDef wdef = sm::default_world_def();
+    wdef.gravity = {};
+    sm::World world(wdef);
+    sm::BodyDef bdef = sm::default_body_def();
+    bdef.shape.radii = {0.5, k_board_half_thickness, 0.0445};
+    bdef.shape.epsilon1 = bdef.shape.epsilon2 = 0.05;
+    bdef.young = 1e9;
+    bdef.modal.enabled = true;
+    bdef.modal.mode_count = 12;
+    bdef.modal.lattice = {8, 1, 1};
+    const sm::Entity board = sm::create_body(world, bdef);
+    sm::BodyDef ball = sm::default_body_def();
+    ball.position = {0.0, 2.0, 0.0};
+    const sm::Entity rigid = sm::create_body(world, ball);
+    const sm::World::Impl& w = sm::impl_of(world);
+    EXPECT_EQ(sm::modal_deformed_test(w.reg, rigid).test, nullptr);
+    const sm::Collider& collider = *w.reg.get<sm::BodyModel>(board).collider;
+    const sm::ModalBasis& basis = *sm::body_modal_basis(world, board);
+    const sm::Vec3 com = w.reg.get<sm::BodyModel>(board).mass.center_of_mass;
+
+    // Every mode at 2e-3 √kg·m (about a millimetre each on the 3.4 kg board): points across the top face.
+    std::vector<double> q(static_cast<size_t>(basis.mode_count), 2e-3), v(q.size(), 0.0);
+    ASSERT_TRUE(sm::set_body_modal_state(world, board, q, v).ok());
+    sm::DeformedTest hook = sm::modal_deformed_test(w.reg, board);
+    ASSERT_NE(hook.test, nullptr);
+    int inside = 0;
+    for (double x = -0.45; x <= 0.45; x += 0.05)
+        for (const double y : {0.015, 0.018, 0.021}) {
+            const sm::Vec3 p{x, y, 0.01}; // the board sits at the origin, unrotated: world = shape frame
+            const sm::InsideTest t = hook.test(hook.ctx, collider, p + com);
+            const sm::BodyPointTest ref = sm::body_point_test(world, board, p);
+            ASSERT_EQ(t.inside, ref.inside) << x << " " << y;
+            if (!t.inside)
+                continue;
+            ++inside;
+            EXPECT_EQ(t.depth, ref.depth);
+            EXPECT_EQ(t.normal.x, ref.normal.x);
+            EXPECT_EQ(t.normal.y, ref.normal.y);
+            EXPECT_EQ(t.normal.z, ref.normal.z);
+        }
+    EXPECT_GT(inside, 10);
+
+    // Folded: amplitudes a thousand times larger turn F singular or send Newton away somewhere on the
+    // face; there the hook answers as the rest shape does.
+    for (double& qk : q)
+        qk *= 1000.0;
+    ASSERT_TRUE(sm::set_body_modal_state(world, board, q, v).ok());
+    hook = sm::modal_deformed_test(w.reg, board);
+    int folded = 0;
+    for (double x = -0.45; x <= 0.45; x += 0.01)
+        for (const double y : {-0.015, 0.0, 0.015}) {
+            const sm::Vec3 p = sm::Vec3{x, y, 0.0} + com;
+            if (sm::modal::invert_deformation(basis, q, p).converged)
+                continue;
+            ++folded;
+            const sm::InsideTest t = hook.test(hook.ctx, collider, p);
+            const sm::InsideTest rest = sm::test_point(collider, p);
+            EXPECT_EQ(t.inside, rest.inside);
+            EXPECT_EQ(t.depth, rest.depth);
+        }
+    EXPECT_GT(folded, 0);
 }
