@@ -228,6 +228,7 @@ class World:
         contact_frequency_hz: float = 0.0,
         contact_damping_ratio: float = -1.0,
         sample_spacing: float = 0.0,
+        deformed_inside_test: bool = False,
         sleep_enabled: bool = True,
     ) -> None: ...
     def configure(self, **settings: object) -> None: ...

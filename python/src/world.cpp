@@ -38,6 +38,7 @@ void read_world_def(Kwargs& kw, sm::WorldDef& def)
     c.frequency_hz = kw.number("contact_frequency_hz", c.frequency_hz);
     c.damping_ratio = kw.number("contact_damping_ratio", c.damping_ratio);
     c.sample_spacing = kw.number("sample_spacing", c.sample_spacing);
+    c.deformed_inside_test = kw.flag("deformed_inside_test", c.deformed_inside_test);
     def.sleep.enabled = kw.flag("sleep_enabled", def.sleep.enabled);
     kw.finish();
 }
@@ -107,6 +108,7 @@ py::dict settings(const WorldBox& box)
     out["contact_frequency_hz"] = d.contact.frequency_hz;
     out["contact_damping_ratio"] = d.contact.damping_ratio;
     out["sample_spacing"] = d.contact.sample_spacing;
+    out["deformed_inside_test"] = d.contact.deformed_inside_test;
     out["sleep_enabled"] = d.sleep.enabled;
     return out;
 }
@@ -188,6 +190,8 @@ mirror WorldDef and ContactDef (defaults in brackets):
   contact_frequency_hz [0] Hz, >= 0: penalty spring (0: the stability cap 1/(10 h)).
   contact_damping_ratio [-1]: penalty damping (< 0: from the pair's restitution).
   sample_spacing [0] m, >= 0: contact sample spacing (0: a quarter of each body's smallest radius).
+  deformed_inside_test [False]: sampled points tested against a modal body meet its deformed shape
+      (through its inverse deformation), so both bodies' dents count; False: its rest shape.
   sleep_enabled [True]: bodies at rest stop being stepped.
 
 A refused value raises ArgumentError naming the keyword and leaves the world unchanged.)");

@@ -62,6 +62,12 @@ def test_settings_change_between_steps():
     assert (s["substep_count"], s["contact_solver"], s["contact_iterations"], s["constraint_iterations"]) == (
         4, "penalty", 20, 8)
     assert s["gravity"] == (0.0, -1.62, 0.0)
+    assert s["deformed_inside_test"] is False
+    w.configure(deformed_inside_test=True)
+    assert w.settings()["deformed_inside_test"] is True
+    with pytest.raises(sm.ArgumentTypeError) as e:
+        w.configure(deformed_inside_test="yes")
+    assert e.value.argument == "deformed_inside_test" and w.settings()["deformed_inside_test"] is True
     w.step()
     with pytest.raises(sm.ArgumentError) as e:
         w.dt = 0.001  # fixed after the first step: time is step_count * dt

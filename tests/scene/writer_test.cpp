@@ -147,6 +147,7 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
     d.check(x.contact.max_samples_per_body == y.contact.max_samples_per_body, "contact.max_samples_per_body");
     d.num(x.contact.speculative_speed_factor, y.contact.speculative_speed_factor, "contact.speculative");
     d.check(x.contact.max_auto_substeps == y.contact.max_auto_substeps, "contact.max_auto_substeps");
+    d.check(x.contact.deformed_inside_test == y.contact.deformed_inside_test, "contact.deformed_inside_test");
     d.num(a.duration, b.duration, "duration");
     d.check(a.materials.size() == b.materials.size(), "materials.size");
     for (size_t i = 0; i < std::min(a.materials.size(), b.materials.size()); ++i) {
@@ -233,7 +234,7 @@ std::string every_field_scene()
                              "push_out_speed": 1.5, "restitution_speed": 0.75, "iterations": 9,
                                        "substeps": 3 },
                              "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
-                             "max_samples_per_body": 700 },
+                             "max_samples_per_body": 700, "deformed_inside_test": true },
                 "threads": 2,
                 "sleep": { "enabled": false, "linear_speed": 0.125, "angular_speed": 0.75, "time": 1.25 } },
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },

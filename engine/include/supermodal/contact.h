@@ -79,6 +79,10 @@ struct ContactDef {
                                            ///< fraction of the thinnest body it may hit in one substep [-].
     int max_auto_substeps = 64;            ///< Cap on the extra substeps that rule may add [-].
     ContactStiffness stiffness = ContactStiffness::Frequency; ///< Frequency (default) or material (Hertz).
+    /// Sampling path: a point tested against a modal body meets its deformed shape (the point mapped back
+    /// through the body's deformation, the normal and depth carried forward), so both bodies' dents
+    /// count; false (the default): against its rest shape (only the sampled body's own dent counts).
+    bool deformed_inside_test = false;
 };
 
 /// One contact after a step: where two bodies touch, summed over the pair's points.

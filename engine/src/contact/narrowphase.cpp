@@ -84,7 +84,9 @@ int one_direction(const BodyView& from, const BodyView& against, bool from_is_a,
             const Vec3 q = inv_rotate(against.orientation, p_world - against.position) + ca.com_shape;
             if (!contains(against_shape_box, q))
                 return;
-            const InsideTest t = test_point(ca, q);
+            const InsideTest t = against.deformed.test != nullptr
+                                     ? against.deformed.test(against.deformed.ctx, ca, q)
+                                     : test_point(ca, q);
             if (!t.inside)
                 return;
             const Vec3 n = rotate(against.orientation, t.normal);

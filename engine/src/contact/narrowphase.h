@@ -15,12 +15,27 @@
 namespace supermodal
 {
 
+/// Point of a shape-frame query: the contact measure and, when inside, depth and outward normal.
+struct InsideTest {
+    bool inside = false;
+    double depth = 0.0; ///< Approximate distance to the surface [m] (measure / |gradient|).
+    Vec3 normal{};      ///< Unit outward normal, shape frame.
+};
+
+/// A body's own inside-outside test in place of its collider's shape: a deformable body's deformed shape
+/// (a modal body through its inverse deformation). Shape-frame point in, shape-frame result out.
+struct DeformedTest {
+    InsideTest (*test)(const void* ctx, const Collider& c, const Vec3& p_shape) = nullptr; ///< Null: rest.
+    const void* ctx = nullptr; ///< What `test` reads (the body's deformation), unchanged during the query.
+};
+
 /// A body as the narrowphase sees it.
 struct BodyView {
     const Collider* collider = nullptr;
-    Vec3 position{};    ///< Centre of mass [m], world.
-    Quat orientation{}; ///< world_from_body.
-    Aabb box{};         ///< World box [m].
+    Vec3 position{};         ///< Centre of mass [m], world.
+    Quat orientation{};      ///< world_from_body.
+    Aabb box{};              ///< World box [m].
+    DeformedTest deformed{}; ///< Sampled points of the other body test against this; default: the rest shape.
 };
 
 /// One contact point of a pair: push A along +normal, B along −normal.
@@ -51,12 +66,6 @@ int collide_plane(const BodyView& body, const BodyView& plane, bool body_is_a,
 /// plane and the other convex.
 [[nodiscard]] bool use_support_map(ContactPath path, const Collider& a, const Collider& b);
 
-/// Point of a shape-frame query: the contact measure and, when inside, depth and outward normal.
-struct InsideTest {
-    bool inside = false;
-    double depth = 0.0; ///< Approximate distance to the surface [m] (measure / |gradient|).
-    Vec3 normal{};      ///< Unit outward normal, shape frame.
-};
 /// Tests a shape-frame point against a collider's shape (deformed shapes through the inverse map).
 [[nodiscard]] InsideTest test_point(const Collider& c, const Vec3& p_shape);
 

@@ -39,8 +39,8 @@ const std::vector<std::string_view> k_settings_keys = {
     "contact", "threads",  "accuracy", "sleep"};
 const std::vector<std::string_view> k_sleep_keys = {"enabled", "linear_speed", "angular_speed", "time"};
 const std::vector<std::string_view> k_accuracy_keys = {"displacement"};
-const std::vector<std::string_view> k_contact_keys = {"solver",    "soft",           "path",
-                                                      "stiffness", "sample_spacing", "max_samples_per_body"};
+const std::vector<std::string_view> k_contact_keys = {
+    "solver", "soft", "path", "stiffness", "sample_spacing", "max_samples_per_body", "deformed_inside_test"};
 const std::vector<std::string_view> k_contact_stiffness = {"frequency", "material"};
 // In ContactSolver order.
 const std::vector<std::string_view> k_contact_solvers = {"soft", "penalty"};
@@ -101,6 +101,7 @@ void read_contact(Reader& r, const Json& contact, const std::string& where, Cont
         read_soft_contact(r, *soft, where + "/soft", out.soft);
     r.field_number(contact, where, "sample_spacing", scene_io::at_least(0.0), out.sample_spacing);
     r.field_int(contact, where, "max_samples_per_body", scene_io::closed(1.0, 1e6), out.max_samples_per_body);
+    r.field_bool(contact, where, "deformed_inside_test", out.deformed_inside_test);
 }
 
 // true/false, or an object of SleepDef's fields.

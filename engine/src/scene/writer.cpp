@@ -60,7 +60,8 @@ Json settings_json(const Scene& scene)
                     {"path", k_contact_paths[static_cast<size_t>(w.contact.path)]},
                     {"stiffness", k_contact_stiffness[static_cast<size_t>(w.contact.stiffness)]},
                     {"sample_spacing", w.contact.sample_spacing},
-                    {"max_samples_per_body", w.contact.max_samples_per_body}};
+                    {"max_samples_per_body", w.contact.max_samples_per_body},
+                    {"deformed_inside_test", w.contact.deformed_inside_test}};
     s["threads"] = w.thread_count;
     s["sleep"] = {{"enabled", w.sleep.enabled},
                   {"linear_speed", w.sleep.linear_speed},

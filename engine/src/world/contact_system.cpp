@@ -63,8 +63,8 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
     const bool plane_a = ma.shape.type == ShapeType::Plane, plane_b = mb.shape.type == ShapeType::Plane;
     if (plane_a && plane_b)
         return;
-    const BodyView a{ma.collider.get(), pa.position, pa.orientation, plane_a ? Aabb{} : boxes[pair.a.index]};
-    const BodyView b{mb.collider.get(), pb.position, pb.orientation, plane_b ? Aabb{} : boxes[pair.b.index]};
+    BodyView a{ma.collider.get(), pa.position, pa.orientation, plane_a ? Aabb{} : boxes[pair.a.index]};
+    BodyView b{mb.collider.get(), pb.position, pb.orientation, plane_b ? Aabb{} : boxes[pair.b.index]};
     // The soft solver takes the manifold's points that do not touch yet too (it stops their approach).
     const bool speculative = def.solver == ContactSolver::Soft;
     if (use_support_map(def.path, *ma.collider, *mb.collider)) {
@@ -86,8 +86,13 @@ void collide_pair(const Registry& reg, std::span<const Aabb> boxes, const BodyPa
         collide_plane(a, b, true, out_points);
     else if (plane_a)
         collide_plane(b, a, false, out_points);
-    else if (overlaps(a.box, b.box))
+    else if (overlaps(a.box, b.box)) {
+        if (def.deformed_inside_test) {
+            a.deformed = modal_deformed_test(reg, pair.a);
+            b.deformed = modal_deformed_test(reg, pair.b);
+        }
         collide_sampled(a, b, out_points);
+    }
 }
 
 bool any_dynamic_collider(Registry& reg)

@@ -4,6 +4,7 @@
 #include "core/assert.h"
 #include "modal/accuracy.h"
 #include "modal/adaptive.h"
+#include "modal/inverse_map.h"
 #include "modal/stress.h"
 #include "world/integrate.h"
 #include "world/world_impl.h"
@@ -224,6 +225,44 @@ void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& cho
     // the ball struck (measured against the all-modes board, docs/modal.md "Adaptive modes").
     m.collider = b.deformed.collider;
     w.reg.emplace(e, std::move(b));
+}
+
+namespace
+{
+
+// A shape-frame point against the deformed shape: back to the rest point X with X + u(X) = p (Newton,
+// the shown modes only, as the samples show them), the rest shape's measure there, its gradient carried
+// forward by F⁻ᵀ: depth = depth_rest / |F⁻ᵀ n|, normal along F⁻ᵀ n. Where Newton fails (a folded
+// field) the point is tested against the rest shape, as without the inverse map.
+InsideTest deformed_inside_test(const void* ctx, const Collider& c, const Vec3& p_shape)
+{
+    const auto& b = *static_cast<const ModalBody*>(ctx);
+    const std::span<const double> shown{b.state.q.data(), b.state.active};
+    const modal::InverseMap inv = modal::invert_deformation(*b.model->basis, shown, p_shape);
+    if (!inv.converged)
+        return test_point(c, p_shape);
+    InsideTest t = test_point(c, inv.rest_point);
+    if (!t.inside)
+        return t;
+    const Vec3 n = transpose(inv.inverse_deformation) * t.normal;
+    const double scale = length(n);
+    if (!(scale > 0.0) || !std::isfinite(scale))
+        return test_point(c, p_shape);
+    t.depth /= scale;
+    t.normal = n / scale;
+    return t;
+}
+
+} // namespace
+
+DeformedTest modal_deformed_test(const Registry& reg, Entity e)
+{
+    const ModalBody* b = reg.find<ModalBody>(e);
+    // A remoulded body's rest shape is the collider's moved by its rest offsets, which the inverse map
+    // does not undo: it keeps the rest test.
+    if (b == nullptr || b->state.active == 0 || !b->model->surface->rest_offsets.empty())
+        return {};
+    return {&deformed_inside_test, b};
 }
 
 void set_active_modes(ModalBody& b, size_t active)

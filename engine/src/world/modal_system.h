@@ -5,6 +5,7 @@
 #pragma once
 
 #include "contact/broadphase.h"
+#include "contact/narrowphase.h"
 #include "modal/auto_lattice.h"
 #include "supermodal/world.h"
 #include "world/components.h"
@@ -35,6 +36,10 @@ class Parallel;
 /// Gives body e (already holding its BodyModel, collider and mass) a ModalBody at rest, sharing the world's
 /// ModalModel for identical bodies (same basis, rest collider and ModalBodyDef).
 void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& choice, const BodyDef& def);
+
+/// The deformed inside-outside test of modal body e for the narrowphase (ContactDef::deformed_inside_test):
+/// empty (the rest shape) for a rigid body, a remoulded one, or one whose surface shows no mode.
+[[nodiscard]] DeformedTest modal_deformed_test(const Registry& reg, Entity e);
 
 /// Sets how many of an adaptive body's lowest modes its surface shows (the others keep stepping, hidden).
 void set_active_modes(ModalBody& b, size_t active);
