@@ -220,7 +220,7 @@ class World:
         contact_enabled: bool = True,
         contact_solver: Solver = "soft",
         contact_iterations: int = 10,
-        solver_substeps: int = 1,
+        solver_substeps: int = 0,
         soft_frequency_hz: float = 0.0,
         soft_damping_ratio: float = 10.0,
         contact_path: Literal["auto", "sampling", "support_map"] = "auto",

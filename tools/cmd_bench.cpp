@@ -220,7 +220,7 @@ void hold_contact_frequencies(WorldDef& world)
     if (!(c.frequency_hz > 0.0))
         c.frequency_hz = 1.0 / (10.0 * h);
     if (!(c.soft.frequency_hz > 0.0))
-        c.soft.frequency_hz = std::min(c.soft.substeps / (2.0 * h), 60.0);
+        c.soft.frequency_hz = std::min(soft_solver_substeps(c.soft, h) / (2.0 * h), 60.0);
 }
 
 } // namespace

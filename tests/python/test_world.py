@@ -20,7 +20,7 @@ def test_defaults_mirror_the_defs():
     assert s["dt"] == 0.002 and s["substep_count"] == 1
     assert s["gravity"] == (0.0, -9.81, 0.0)
     assert s["contact_solver"] == "soft" and s["contact_iterations"] == 10
-    assert s["solver_substeps"] == 1
+    assert s["solver_substeps"] == 0  # automatic: each solver substep at most 1/240 s
     b = w.create_body()
     assert b.position == (0.0, 0.0, 0.0) and b.orientation == (1.0, 0.0, 0.0, 0.0)
     # A water-density sphere of radius 0.5 m: m = 1000 * 4/3 pi 0.5^3.
@@ -32,9 +32,15 @@ def test_free_fall_matches_the_integrator():
     b = w.create_body(position=(0, 0, 0))
     w.step(100)
     assert w.step_count == 100 and w.time == pytest.approx(1.0)
-    # Semi-implicit Euler: v_n = -10 n h, y_n = -10 h^2 n(n+1)/2 = -5.05 m after 1 s (exactly, to round-off).
+    # Semi-implicit Euler over the automatic solver substeps (3 per 0.01 s step, h = 1/300 s): v_n = -10 n h,
+    # y_n = -10 h^2 n(n+1)/2 = -5 (1 + 1/300) m after 1 s (exactly, to round-off).
     assert b.linear_velocity[1] == pytest.approx(-10.0, rel=1e-12)
-    assert b.position[1] == pytest.approx(-5.05, rel=1e-12)
+    assert b.position[1] == pytest.approx(-5.0 * (1.0 + 1.0 / 300.0), rel=1e-12)
+    # One solver substep integrates over the whole step: -5.05 m.
+    w1 = sm.World(dt=0.01, gravity=(0, -10, 0), solver_substeps=1)
+    b1 = w1.create_body(position=(0, 0, 0))
+    w1.step(100)
+    assert b1.position[1] == pytest.approx(-5.05, rel=1e-12)
 
 
 def test_ball_comes_to_rest_on_the_ground():

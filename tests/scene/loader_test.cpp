@@ -271,6 +271,8 @@ TEST(SceneLoaderErrors, ContactSolverSettingsNameTheirPointer)
                          "/settings/contact/soft/iterations", "found 0"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": 65}}}})",
                          "/settings/contact/soft/substeps", "found 65"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": -1}}}})",
+                         "/settings/contact/soft/substeps", "found -1"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"frequenzy": 3}}}})",
                          "/settings/contact/soft/frequenzy", "did you mean \"frequency\"?"));
 }

@@ -87,7 +87,7 @@ void read_soft_contact(Reader& r, const Json& soft, const std::string& where, So
     r.field_number(soft, where, "push_out_speed", scene_io::above(0.0), out.push_out_speed);
     r.field_number(soft, where, "restitution_speed", scene_io::at_least(0.0), out.restitution_speed);
     r.field_int(soft, where, "iterations", scene_io::closed(1.0, 100.0), out.iterations);
-    r.field_int(soft, where, "substeps", scene_io::closed(1.0, 64.0), out.substeps);
+    r.field_int(soft, where, "substeps", scene_io::closed(0.0, 64.0), out.substeps);
 }
 
 void read_contact(Reader& r, const Json& contact, const std::string& where, ContactDef& out)

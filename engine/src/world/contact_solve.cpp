@@ -193,15 +193,27 @@ double pair_omega(const SoftContactDef& def, double h, bool one_moves)
     return 2.0 * std::numbers::pi * hz * (one_moves ? 2.0 : 1.0);
 }
 
+// The load-tuned spring's ω·h at most this [-] (never below the untuned one) between rigid bodies: a
+// spring much stiffer than its substep is a rigid row, which a few passes leave unconverged down a
+// stack, and the column's sway grew on that residual (measured at 1/60 s in four solver substeps: 25-
+// and 30-box columns fell with the bottom contacts at ω·h ≈ 7, and stood within 1 cm with this bound;
+// 3.14–4.4 all held the 20-box column, 2π dropped it). A modal side's row carries its modes' compliance
+// and is not bounded: its light surface under a heavy body needs the full tuning (bounded, a soft ball
+// on the ground still moved at 4.6 cm/s after 3 s, and a pressed elastic block slid 2.9 mm).
+constexpr double k_max_tuned_omega_h = std::numbers::pi;
+
 // A point's spring, tuned to the larger of its effective mass and the mass its last load stands for
 // (load / g): the bottom contact of a stack carries the whole stack, and a spring tuned to one body
 // would sink under it by the stack's weight over m_eff·ω²; tuned to the load, every contact of the
-// stack sinks by the same g/ω², whatever its height.
+// stack sinks by the same g/ω², whatever its height, up to the bound above.
 SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint& p, double gravity)
 {
     const double load_mass = gravity > 0.0 ? p.normal_impulse / (h * gravity) : 0.0;
     const double scale = p.normal_mass > 0.0 && load_mass > p.normal_mass ? load_mass / p.normal_mass : 1.0;
-    return make_soft(omega * std::sqrt(scale), zeta, h);
+    const double tuned = omega * std::sqrt(scale);
+    if (p.a.modal.active() || p.b.modal.active())
+        return make_soft(tuned, zeta, h);
+    return make_soft(std::min(tuned, std::max(omega, k_max_tuned_omega_h / h)), zeta, h);
 }
 
 // A pair's upper body at least this much heavier than its lower one (their masses along the normal at

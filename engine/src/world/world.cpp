@@ -41,8 +41,8 @@ Status validate_soft(const SoftContactDef& soft)
         return Error{"", "contact.soft.restitution_speed", "expected a finite speed >= 0 m/s"};
     if (soft.iterations < 1 || soft.iterations > 100)
         return Error{"", "contact.soft.iterations", "expected an integer in [1, 100]"};
-    if (soft.substeps < 1 || soft.substeps > 64)
-        return Error{"", "contact.soft.substeps", "expected an integer in [1, 64]"};
+    if (soft.substeps < 0 || soft.substeps > 64)
+        return Error{"", "contact.soft.substeps", "expected an integer in [0, 64] (0: automatic)"};
     return {};
 }
 
@@ -142,7 +142,9 @@ void World::Impl::step()
     if (substeps > def.substep_count)
         warnings.speculative_substeps += static_cast<uint64_t>(substeps - def.substep_count);
     // The soft solver's own substeps reuse each narrowphase's points (Box2D v3's soft step).
-    const int solver_substeps = def.contact.solver == ContactSolver::Soft ? def.contact.soft.substeps : 1;
+    const int solver_substeps = def.contact.solver == ContactSolver::Soft
+                                    ? soft_solver_substeps(def.contact.soft, def.dt / substeps)
+                                    : 1;
     StepContext ctx = make_step_context(def);
     ctx.substep_count = substeps * solver_substeps;
     ctx.h = def.dt / ctx.substep_count;
