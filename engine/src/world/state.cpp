@@ -117,6 +117,12 @@ struct Reader {
 // What restore rebuilds from the restored state: the deformed surfaces and the accuracy report's start.
 void after_restore(World::Impl& w)
 {
+    // A pair's proof of being apart is a cache the snapshot does not hold, and a manifold read into a
+    // slot that held another pair keeps that pair's proof: drop them all (the next query proves again).
+    for (PairManifold& m : w.contact.manifolds)
+        m.apart = {};
+    for (PairManifold& m : w.contact.parked.manifolds)
+        m.apart = {};
     restore_remould(w);
     for (ModalBody& b : w.reg.store<ModalBody>().values()) {
         b.stats.most_active = std::max(b.stats.most_active, b.state.active);
