@@ -3,6 +3,7 @@
 
 #include "dynamics/step_context.h"
 #include "world/contact_system.h"
+#include "world/heavy_on_light.h"
 #include "world/islands.h"
 #include "world/modal_system.h"
 
@@ -69,12 +70,6 @@ void tangents(const Vec3& n, Vec3 out[2])
     out[1] = cross(n, out[0]);
 }
 
-double inverse_along(const Mat3& k, const Vec3& d)
-{
-    const double w = dot(d, k * d);
-    return w > 0.0 ? 1.0 / w : 0.0;
-}
-
 void apply(SoftPoint& p, const Vec3& impulse)
 {
     push(p.a, impulse, Vec3{});
@@ -111,16 +106,6 @@ void apply_accumulated(SoftPoint& p)
     }
     apply(p, p.normal_impulse * p.normal);
     apply_friction(p, p.tangent_impulse[0] * p.tangent[0] + p.tangent_impulse[1] * p.tangent[1]);
-}
-
-// The point's effective masses: along the normal with the modes, in the contact plane without them.
-void set_masses(SoftPoint& p)
-{
-    const Mat3 k = point_mass_inverse(p.a, p.b);
-    p.normal_mass = inverse_along(k, p.normal);
-    const Mat3 kt = p.a.modal.active() || p.b.modal.active() ? rigid_point_mass_inverse(p.a, p.b) : k;
-    p.tangent_mass[0] = inverse_along(kt, p.tangent[0]);
-    p.tangent_mass[1] = inverse_along(kt, p.tangent[1]);
 }
 
 // How a pair's rows read and push their bodies: through the sides, modes included.
@@ -216,18 +201,6 @@ SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint
     return make_soft(std::min(tuned, std::max(omega, k_max_tuned_omega_h / h)), zeta, h);
 }
 
-// A pair's upper body at least this much heavier than its lower one (their masses along the normal at
-// its first point) has the lower one's mass scaled up in its rows (scale_heavy_on_light).
-constexpr double k_heavy_mass_ratio = 4.0;
-// ... and resting on it: the normal (from the lower body to the upper one) at most 60° from up.
-constexpr double k_heavy_min_uprightness = 0.5;
-
-// A side's own mass along d at its anchor [kg] (the other side held still).
-double side_mass_along(const Side& s, const Vec3& d)
-{
-    return inverse_along(point_mass_inverse(s, Side{}), d);
-}
-
 // out.size() of the points, farthest-point first from the deepest: each next the one farthest from
 // all taken, so the rows cover the patch evenly.
 size_t spread_rows(std::span<const ContactPoint> points, std::span<uint32_t> out)
@@ -309,7 +282,7 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
     tangents(cp.normal, p.tangent);
     p.separation = -cp.depth;
     p.depth = cp.depth;
-    set_masses(p);
+    set_point_masses(p);
     return p;
 }
 
@@ -336,7 +309,7 @@ SoftPoint make_rigid_point(const SoftPoint& first, const ContactPoint& cp)
     tangents(cp.normal, p.tangent);
     p.separation = -cp.depth;
     p.depth = cp.depth;
-    set_masses(p);
+    set_point_masses(p);
     return p;
 }
 
@@ -346,7 +319,7 @@ void remake_sides(Registry& reg, const BodyPair& pair, SoftPoint& p, double h)
     const Vec3 x = p.a.point;
     p.a = contact_side(reg, pair.a, x, h);
     p.b = contact_side(reg, pair.b, x, h);
-    set_masses(p);
+    set_point_masses(p);
 }
 
 // The pair's rows, not yet warm started: its settings, its points' sides and masses.
@@ -550,111 +523,23 @@ ContactInfo pair_info(const BodyPair& pair, const SoftPair& sp, const SoftContac
             .point_count = static_cast<int>(sp.count)};
 }
 
-// Each node's place in `nodes` (sorted, no repeats), by node: a table instead of a binary search per
-// lookup (two per pair, twice).
-std::vector<uint32_t> node_places(const std::vector<uint32_t>& nodes)
-{
-    std::vector<uint32_t> place(nodes.empty() ? 0 : static_cast<size_t>(nodes.back()) + 1, 0);
-    for (size_t i = 0; i < nodes.size(); ++i)
-        place[nodes[i]] = static_cast<uint32_t>(i);
-    return place;
-}
-
-// Levels of the contact graph [-]: 1 for a body touching something that takes no impulse (the ground,
-// a kinematic body), n + 1 for one touching a level-n body; 0 where not grounded. Breadth
-// first in pair order, so the result does not depend on threads.
-std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector<uint32_t>& nodes,
-                                     const std::vector<uint32_t>& place)
-{
-    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
-    std::vector<uint32_t> start(nodes.size() + 1, 0), edges, level(nodes.size(), 0), queue;
-    for (const SoftPair& sp : rows.pairs)
-        if (sp.count > 0 && sp.node_a != k_no_node && sp.node_b != k_no_node) {
-            ++start[id(sp.node_a) + 1];
-            ++start[id(sp.node_b) + 1];
-        }
-    for (size_t i = 0; i < nodes.size(); ++i)
-        start[i + 1] += start[i];
-    edges.resize(start.back());
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (const SoftPair& sp : rows.pairs) {
-        if (sp.count == 0)
-            continue;
-        const bool a = sp.node_a != k_no_node, b = sp.node_b != k_no_node;
-        if (a && b) {
-            edges[fill[id(sp.node_a)]++] = static_cast<uint32_t>(id(sp.node_b));
-            edges[fill[id(sp.node_b)]++] = static_cast<uint32_t>(id(sp.node_a));
-        } else if (a != b) {
-            const size_t i = id(a ? sp.node_a : sp.node_b);
-            if (level[i] == 0) {
-                level[i] = 1;
-                queue.push_back(static_cast<uint32_t>(i));
-            }
-        }
-    }
-    for (size_t q = 0; q < queue.size(); ++q)
-        for (uint32_t e = start[queue[q]]; e < start[queue[q] + 1]; ++e)
-            if (level[edges[e]] == 0) {
-                level[edges[e]] = level[queue[q]] + 1;
-                queue.push_back(edges[e]);
-            }
-    return level;
-}
-
-// Heavy on light: a pair whose upper body (the one farther from the ground in the contact graph, and
-// above the other along the normal) is at least k_heavy_mass_ratio times heavier than its lower one along
-// the normal has the lower body's
-// inverse mass and inertia in its rows scaled down to look as heavy as the upper one. Gauss–Seidel moves
-// a heavy body on a light one by the light one's effective mass per pass (it converges by the mass ratio
-// per pass, 0.999 at 1000), so an impact is never stopped and the light body is squeezed out; scaled,
-// the pair converges like an equal-mass one. The lower body then carries the upper one as part of the
-// ground: it is pushed by the upper body's change of velocity, not its momentum.
-void scale_heavy_on_light(SoftContacts& rows)
-{
-    std::vector<uint32_t>& nodes = rows.nodes;
-    nodes.clear();
-    bool stacked = false;
-    for (const SoftPair& sp : rows.pairs) {
-        if (sp.count == 0)
-            continue;
-        if (sp.node_a != k_no_node)
-            nodes.push_back(sp.node_a);
-        if (sp.node_b != k_no_node)
-            nodes.push_back(sp.node_b);
-        stacked = stacked || (sp.node_a != k_no_node && sp.node_b != k_no_node);
-    }
-    if (!stacked || !(rows.gravity > 0.0))
-        return; // no body rests on another
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    const std::vector<uint32_t> place = node_places(nodes);
-    auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
-    const std::vector<uint32_t> level = contact_levels(rows, nodes, place);
-    for (SoftPair& sp : rows.pairs) {
-        if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
-            continue;
-        const uint32_t la = level[id(sp.node_a)], lb = level[id(sp.node_b)];
-        const SoftPoint& first = rows.points[sp.first];
-        if (la == 0 || lb == 0 || la == lb || first.a.modal.active() || first.b.modal.active())
-            continue;
-        const bool a_lower = la < lb;
-        if (dot(first.normal, rows.up) * (a_lower ? -1.0 : 1.0) < k_heavy_min_uprightness)
-            continue; // not resting on it: a body thrown against a light one keeps its momentum
-        const double ratio = side_mass_along(a_lower ? first.b : first.a, first.normal) /
-                             side_mass_along(a_lower ? first.a : first.b, first.normal);
-        if (!(ratio >= k_heavy_mass_ratio) || !std::isfinite(ratio))
-            continue;
-        for (uint32_t i = 0; i < sp.count; ++i) {
-            SoftPoint& p = rows.points[sp.first + i];
-            Side& lower = a_lower ? p.a : p.b;
-            lower.inv_mass /= ratio;
-            lower.inv_inertia = add_scaled(Mat3{}, lower.inv_inertia, 1.0 / ratio);
-            set_masses(p); // both rigid here (modal pairs are not scaled)
-        }
-    }
-}
-
 } // namespace
+
+double inverse_along(const Mat3& k, const Vec3& d)
+{
+    const double w = dot(d, k * d);
+    return w > 0.0 ? 1.0 / w : 0.0;
+}
+
+// The point's effective masses: along the normal with the modes, in the contact plane without them.
+void set_point_masses(SoftPoint& p)
+{
+    const Mat3 k = point_mass_inverse(p.a, p.b);
+    p.normal_mass = inverse_along(k, p.normal);
+    const Mat3 kt = p.a.modal.active() || p.b.modal.active() ? rigid_point_mass_inverse(p.a, p.b) : k;
+    p.tangent_mass[0] = inverse_along(kt, p.tangent[0]);
+    p.tangent_mass[1] = inverse_along(kt, p.tangent[1]);
+}
 
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io)
 {

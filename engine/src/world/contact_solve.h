@@ -80,6 +80,11 @@ void restitute_soft_pair(void* rows, size_t i);
 /// After the positions moved with the solved velocities: each point's gap as it is now, and each
 /// sticking pair's slip.
 void advance_soft_separations(SoftContacts& io);
+/// 1 / (d·K d) for an inverse-mass matrix K: the effective mass along the unit d [kg], 0 where K takes
+/// nothing along d.
+[[nodiscard]] double inverse_along(const Mat3& k, const Vec3& d);
+/// A point's effective masses: along the normal with the modes, in the contact plane without them.
+void set_point_masses(SoftPoint& p);
 /// The pairs' loads into their anchors (warm starting), contacts, events and the deepest overlap.
 void finish_soft_contacts(const StepContext& ctx, ContactWorld& io);
 
