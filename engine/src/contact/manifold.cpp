@@ -304,28 +304,29 @@ constexpr double k_proof_round_off = 1e-12;
 // Whether the pair's proof still holds: the overlap along the normal, n·(B's offset in A's frame) plus
 // each body's extent along it, can have grown since by at most the offset's change along n plus B's
 // reach times the normal's turn in B's frame (A's extent along its own frame's normal is unchanged).
+// A proof of the pair apart by `overlap` along `normal` (A's frame) at the bodies' present pose: B's
+// offset in A's frame and the normal in B's frame.
+PairManifold::ApartProof proof_at(const BodyView& a, const BodyView& b, const Vec3& normal, double overlap)
+{
+    return {a.collider,
+            b.collider,
+            normal,
+            to_body(a, b.position),
+            inv_rotate(b.orientation, rotate(a.orientation, normal)),
+            overlap};
+}
+
 bool still_apart(const BodyView& a, const BodyView& b, const PairManifold& io, double gap)
 {
     const PairManifold::ApartProof& p = io.apart;
     if (p.a != a.collider || p.b != b.collider || !(p.normal == io.normal))
         return false;
-    const Vec3 offset = to_body(a, b.position);
-    const Vec3 normal_b = inv_rotate(b.orientation, rotate(a.orientation, io.normal));
+    const PairManifold::ApartProof now = proof_at(a, b, io.normal, 0.0);
     const double reach_b = reach(*b.collider);
     const double scale = length(a.position) + length(b.position) + reach(*a.collider) + reach_b;
-    const double bound = p.overlap + dot(io.normal, offset - p.offset) +
-                         reach_b * length(normal_b - p.normal_b) + k_proof_round_off * scale;
+    const double bound = p.overlap + dot(io.normal, now.offset - p.offset) +
+                         reach_b * length(now.normal_b - p.normal_b) + k_proof_round_off * scale;
     return bound < -gap;
-}
-
-void prove_apart(const BodyView& a, const BodyView& b, double overlap, PairManifold& io)
-{
-    io.apart = {a.collider,
-                b.collider,
-                io.normal,
-                to_body(a, b.position),
-                inv_rotate(b.orientation, rotate(a.orientation, io.normal)),
-                overlap};
 }
 
 // Two bodies with face patches (face_contact.h). A pair found apart at the last substep first tries the
@@ -341,7 +342,7 @@ int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculati
         if (still_apart(a, b, io, gap))
             return 0;
         if (const double overlap = overlap_along(a, b, stored, calls); !(overlap > -gap)) {
-            prove_apart(a, b, overlap, io);
+            io.apart = proof_at(a, b, io.normal, overlap);
             return 0; // still apart along it
         }
     }
