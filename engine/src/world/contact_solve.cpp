@@ -121,6 +121,15 @@ struct AnySides {
         else
             supermodal::apply(p, impulse);
     }
+    [[nodiscard]] Vec3 spin(const SoftPoint& p) const
+    {
+        return angular_velocity(p.a) - angular_velocity(p.b);
+    }
+    void apply_spin(SoftPoint& p, const Vec3& angular_impulse) const
+    {
+        push_rigid_spin(p.a, angular_impulse);
+        push_rigid_spin(p.b, -1.0 * angular_impulse);
+    }
 };
 
 // ... or, for two rigid bodies, straight on their velocities: the arithmetic of anchor_velocity() and
@@ -155,6 +164,16 @@ struct RigidSides {
     }
     [[nodiscard]] Vec3 friction_velocity(const SoftPoint& p) const { return velocity(p); }
     void apply_friction(SoftPoint& p, const Vec3& impulse) const { apply(p, impulse); }
+    [[nodiscard]] static Vec3 spin_of(const Side& s) { return s.v == nullptr ? Vec3{} : s.v->angular; }
+    [[nodiscard]] Vec3 spin(const SoftPoint& p) const { return spin_of(p.a) - spin_of(p.b); }
+    void apply_spin(SoftPoint& p, const Vec3& angular_impulse) const // as push_rigid_spin()
+    {
+        if (free_a && p.a.inv_mass != 0.0)
+            p.a.v->angular += p.a.inv_inertia * angular_impulse;
+        const Vec3 on_b = -1.0 * angular_impulse;
+        if (free_b && p.b.inv_mass != 0.0)
+            p.b.v->angular += p.b.inv_inertia * on_b;
+    }
 };
 
 // Whether none of the pair's points has a modal side.
@@ -447,22 +466,20 @@ template <class Sides> void solve_friction(SoftPoint& p, SoftPair& sp, bool use_
 
 // Rolling resistance: the relative rolling spin (in the contact plane) stopped by an angular impulse up
 // to ℓ·λ_n, the lever of the normal force about the centre.
-void solve_rolling(SoftPair& sp, SoftContacts& rows)
+template <class Sides> void solve_rolling(SoftPair& sp, SoftContacts& rows, const Sides& sides)
 {
     SoftPoint& first = rows.points[sp.first];
     double normal = 0.0;
     for (uint32_t i = 0; i < sp.count; ++i)
         normal += rows.points[sp.first + i].normal_impulse;
     const Vec3 n = first.normal;
-    const Vec3 w = angular_velocity(first.a) - angular_velocity(first.b);
+    const Vec3 w = sides.spin(first);
     Vec3 total = sp.roll_impulse - sp.roll_mass * (w - dot(w, n) * n);
     total = total - dot(total, n) * n;
     const double limit = sp.rolling * normal;
-    if (length(total) > limit)
-        total = limit > 0.0 ? total * (limit / length(total)) : Vec3{};
-    const Vec3 d = total - sp.roll_impulse;
-    push_rigid_spin(first.a, d);
-    push_rigid_spin(first.b, -1.0 * d);
+    if (const double len = length(total); len > limit)
+        total = limit > 0.0 ? total * (limit / len) : Vec3{};
+    sides.apply_spin(first, total - sp.roll_impulse);
     sp.roll_impulse = total;
 }
 
@@ -475,7 +492,7 @@ void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Side
     for (uint32_t i = 0; i < sp.count; ++i)
         solve_friction(rows.points[sp.first + i], sp, use_bias, sides);
     if (sp.rolling > 0.0 && sp.roll_mass.m[0][0] != 0.0)
-        solve_rolling(sp, rows);
+        solve_rolling(sp, rows, sides);
 }
 
 void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
