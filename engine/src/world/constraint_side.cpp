@@ -57,7 +57,7 @@ void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     s.inv_mass = 0.0;
     if (e.is_null() || !bodies.valid(e)) {
         s.point = local;
-        modal_anchor(nullptr, Quat{}, local, h, false, s.modal); // the world has no modes: empties it
+        s.modal.clear(); // the world has no modes
         return;
     }
     s.m = &bodies.get<BodyModel>(e);
@@ -65,8 +65,11 @@ void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     s.point = world_point(*s.m, *s.p, local);
     // A modal body's anchor rides on the deformed material (a surface anchor stays on the deformed
     // surface, as the contact samples do).
-    if (modal_anchor(bodies.find<ModalBody>(e), s.p->orientation, local, h, with_rotation, s.modal))
-        s.point += s.modal.displacement;
+    ModalBody* modal = bodies.find<ModalBody>(e);
+    if (modal != nullptr && modal_anchor(modal, s.p->orientation, local, h, with_rotation, s.modal.fill()))
+        s.point += s.modal->displacement;
+    else
+        s.modal.clear();
     s.r = s.point - s.p->position;
     if (s.m->motion == MotionType::Dynamic) {
         s.v = &bodies.get<Velocity>(e);
@@ -88,7 +91,7 @@ Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h)
         // x carries the displacement already; φ at the displaced point differs from φ at the rest
         // point only to second order in the deformation.
         const Vec3 local = inv_rotate(s.p->orientation, s.r) + s.m->mass.center_of_mass;
-        modal_anchor(b, s.p->orientation, local, h, false, s.modal);
+        modal_anchor(b, s.p->orientation, local, h, false, s.modal.fill());
     }
     if (s.m->motion == MotionType::Dynamic) {
         s.v = &bodies.get<Velocity>(e);
@@ -104,8 +107,8 @@ Quat anchor_orientation(const Side& s)
 {
     if (s.p == nullptr)
         return Quat{};
-    return s.modal.active() && !s.modal.psi.empty()
-               ? normalized(quat_from_rotation_vector(s.modal.rotation) * s.p->orientation)
+    return s.modal.active() && !s.modal->psi.empty()
+               ? normalized(quat_from_rotation_vector(s.modal->rotation) * s.p->orientation)
                : s.p->orientation;
 }
 
@@ -118,7 +121,7 @@ Vec3 anchor_velocity(const Side& s)
 {
     Vec3 v = rigid_anchor_velocity(s);
     if (s.modal.active())
-        v += modal_anchor_velocity(s.modal);
+        v += modal_anchor_velocity(*s.modal);
     return v;
 }
 
@@ -129,7 +132,7 @@ Vec3 angular_velocity(const Side& s)
 
 Vec3 anchor_spin(const Side& s)
 {
-    return s.modal.active() ? angular_velocity(s) + modal_anchor_spin(s.modal) : angular_velocity(s);
+    return s.modal.active() ? angular_velocity(s) + modal_anchor_spin(*s.modal) : angular_velocity(s);
 }
 
 namespace
@@ -162,7 +165,7 @@ void push_rigid(Side& s, const Vec3& impulse)
 void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
 {
     if (s.modal.active())
-        modal_anchor_push(s.modal, impulse, angular_impulse);
+        modal_anchor_push(*s.modal, impulse, angular_impulse);
     if (s.v == nullptr || s.inv_mass == 0.0 || frozen_since(s))
         return;
     s.v->linear += s.inv_mass * impulse;
@@ -182,7 +185,7 @@ Mat3 point_mass_inverse(const Side& a, const Side& b, bool with_modes)
         if (s->inv_mass > 0.0)
             k = add_scaled(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
         if (with_modes && s->modal.active())
-            k = add_scaled(k, modal_anchor_inverse_mass(s->modal), 1.0);
+            k = add_scaled(k, modal_anchor_inverse_mass(*s->modal), 1.0);
     }
     return k;
 }
@@ -204,7 +207,7 @@ Mat3 anchor_inertia_inverse(const Side& a, const Side& b)
     Mat3 k = add_scaled(a.inv_inertia, b.inv_inertia, 1.0);
     for (const Side* s : {&a, &b})
         if (s->modal.active())
-            k = add_scaled(k, modal_anchor_inverse_inertia(s->modal), 1.0);
+            k = add_scaled(k, modal_anchor_inverse_inertia(*s->modal), 1.0);
     return k;
 }
 

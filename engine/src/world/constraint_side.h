@@ -6,8 +6,53 @@
 #include "modal/constraint_coupling.h"
 #include "world/components.h"
 
+#include <memory>
+
 namespace supermodal
 {
+
+/// The modes at a side's anchor, held out of line: most sides are rigid, and the solver's passes read
+/// the sides back to back (held inline, the anchor's buffers were 40% of a contact point's bytes).
+/// Copies are deep; a side that stops being modal keeps its buffers for the next fill.
+class ModalSide
+{
+  public:
+    ModalSide() = default;
+    ModalSide(const ModalSide& other) { *this = other; }
+    ModalSide(ModalSide&&) noexcept = default;
+    ModalSide& operator=(ModalSide&&) noexcept = default;
+    ~ModalSide() = default;
+    ModalSide& operator=(const ModalSide& other)
+    {
+        if (other.active())
+            fill() = *other.m_anchor;
+        else
+            clear();
+        return *this;
+    }
+    [[nodiscard]] bool active() const { return m_anchor != nullptr && m_anchor->active(); }
+    /// The anchor to fill, with its buffers from the last fill (allocated the first time).
+    ModalAnchor& fill()
+    {
+        if (m_anchor == nullptr)
+            m_anchor = std::make_unique<ModalAnchor>();
+        return *m_anchor;
+    }
+    /// Not modal any more (the buffers stay).
+    void clear()
+    {
+        if (m_anchor != nullptr)
+            m_anchor->body = nullptr;
+    }
+    /// The anchor; only while active().
+    [[nodiscard]] const ModalAnchor& operator*() const { return *m_anchor; }
+    [[nodiscard]] ModalAnchor& operator*() { return *m_anchor; }
+    [[nodiscard]] const ModalAnchor* operator->() const { return m_anchor.get(); }
+    [[nodiscard]] ModalAnchor* operator->() { return m_anchor.get(); }
+
+  private:
+    std::unique_ptr<ModalAnchor> m_anchor;
+};
 
 /// make_side() sets every field in place (a new field needs setting there too).
 struct Side {
@@ -18,7 +63,7 @@ struct Side {
     Vec3 r{};              ///< Anchor − centre of mass [m], world.
     Mat3 inv_inertia{};    ///< World frame [1/(kg·m²)]; zero unless dynamic.
     double inv_mass = 0.0;
-    ModalAnchor modal; ///< The modes at the anchor (modal bodies only).
+    ModalSide modal; ///< The modes at the anchor (modal bodies only).
 };
 
 /// Makes `out` the side of body e (null: the world, `local` a world point) at shape-frame anchor `local`,

@@ -52,7 +52,7 @@ void swing_twist(const Quat& r, const Vec3& axis, Vec3& out_swing, double& out_t
 // there too (ψ, as a weld holds it), else a limit held the body's frame while its modes bent past it.
 bool is_modal(const Side& s)
 {
-    return s.modal.active() && !s.modal.psi.empty();
+    return s.modal.active() && !s.modal->psi.empty();
 }
 
 // An angular impulse L [N·m·s] on the side's material at the anchor.
