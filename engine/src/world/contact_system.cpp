@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 namespace supermodal
@@ -104,11 +105,10 @@ bool any_dynamic_collider(Registry& reg)
 }
 
 // One broadphase proxy per body with a collider: its world box swept over the step.
-// A body's box for the step: its world box swept over the step.
-Aabb swept_box(const WorldDef& def, const BodyModel& m, const Pose& p, const Velocity& v)
+// A body's box for the step: its world box `box` swept over the step.
+Aabb swept_box(const WorldDef& def, const BodyModel& m, Aabb box, const Velocity& v)
 {
     const double dt = def.dt;
-    Aabb box = body_box(m, p);
     if (m.shape.type != ShapeType::Plane) {
         // Sweep over the step; rotation and gravity's change of velocity widen it.
         const Vec3 half = 0.5 * (box.max - box.min);
@@ -122,11 +122,34 @@ Aabb swept_box(const WorldDef& def, const BodyModel& m, const Pose& p, const Vel
     return box;
 }
 
+// The world box of an awake body for the broadphase, kept for the narrowphase (box_poses).
+Aabb keep_body_box(const BodyModel& m, const Pose& p, Entity e, ContactWorld& io)
+{
+    const Aabb box = body_box(m, p);
+    io.boxes[e.index] = box;
+    io.box_poses[e.index] = {p.position, p.orientation};
+    io.box_made_by[e.index] = io.broadphase_count;
+    return box;
+}
+
+// The broadphase's box of e if it was made at e's pose now (the same bits body_box gives).
+bool reuse_body_box(const Pose& p, Entity e, const ContactWorld& io)
+{
+    const auto& [position, orientation] = io.box_poses[e.index];
+    return io.box_made_by[e.index] == io.broadphase_count &&
+           std::memcmp(&position, &p.position, sizeof(Vec3)) == 0 &&
+           std::memcmp(&orientation, &p.orientation, sizeof(Quat)) == 0;
+}
+
 void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
 {
     const size_t slots = reg.pool().slot_count();
     io.sleep_boxes.resize(slots);
     io.sleep_box_set.resize(slots, 0);
+    io.boxes.resize(slots);
+    io.box_poses.resize(slots);
+    io.box_made_by.resize(slots, 0);
+    ++io.broadphase_count;
     reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, const Velocity& v) {
         if (!m.collider)
             return;
@@ -136,15 +159,16 @@ void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
         if (!asleep)
             set = 0;
         else if (set == 0) {
-            io.sleep_boxes[e.index] = swept_box(def, m, p, v);
+            io.sleep_boxes[e.index] = swept_box(def, m, body_box(m, p), v);
             set = 1;
         }
         const bool moving = m.motion == MotionType::Kinematic && (v.linear != Vec3{} || v.angular != Vec3{});
-        io.proxies.push_back({.entity = e,
-                              .box = asleep ? io.sleep_boxes[e.index] : swept_box(def, m, p, v),
-                              .is_static = m.motion != MotionType::Dynamic,
-                              .asleep = asleep,
-                              .moving = moving});
+        io.proxies.push_back(
+            {.entity = e,
+             .box = asleep ? io.sleep_boxes[e.index] : swept_box(def, m, keep_body_box(m, p, e, io), v),
+             .is_static = m.motion != MotionType::Dynamic,
+             .asleep = asleep,
+             .moving = moving});
     });
 }
 
@@ -269,8 +293,9 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
                 continue;
             const Entity e = io.proxies[i].entity;
             const BodyModel& m = reg.get<BodyModel>(e);
-            if (m.shape.type != ShapeType::Plane)
-                io.boxes[e.index] = body_box(m, reg.get<Pose>(e));
+            const Pose& p = reg.get<Pose>(e);
+            if (m.shape.type != ShapeType::Plane && !reuse_body_box(p, e, io))
+                io.boxes[e.index] = body_box(m, p);
         }
     });
     for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {

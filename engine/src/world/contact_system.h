@@ -55,6 +55,11 @@ struct ContactWorld {
     std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;    ///< Scratch.
     std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].
+    /// Scratch: per entity index, the pose its box was made at and the broadphase that made it, so the
+    /// narrowphase right after takes the broadphase's boxes instead of three more support calls each.
+    std::vector<std::pair<Vec3, Quat>> box_poses;
+    std::vector<uint64_t> box_made_by;
+    uint64_t broadphase_count = 0; ///< Broadphases run [-] (to match box_made_by).
     /// Scratch: per entity index, a sleeping body's swept box, computed once while it sleeps (its pose
     /// and velocity do not change then, so reusing it gives the same box) [m]; and whether it is set.
     std::vector<Aabb> sleep_boxes;
