@@ -53,7 +53,7 @@ struct SoftPair {
     bool sliding = false;   ///< Friction reached the Coulomb disc this substep (a point's, then the pair's).
     Mat3 roll_mass{};       ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
     Vec3 roll_impulse{};    ///< Accumulated angular impulse on a [N·m·s].
-    bool backwards = false; ///< The next pass takes the normal rows last to first (passes alternate).
+    bool backwards = false; ///< Take the normal rows last to first (flips after each pass).
 };
 
 /// The soft solver's rows of one substep (scratch of ContactWorld).
