@@ -115,15 +115,17 @@ Stack grid(int n)
     return s;
 }
 
-// One --trace line to stderr: time, the largest body speed and which body, that body's height.
-void trace_line(PeerWorld& w, int bodies, double t)
+// One --trace line to stderr: time, the largest body speed and which body, that body's height, and the
+// last watched box's drift from `start` (horizontal, vertical).
+void trace_line(PeerWorld& w, int bodies, double t, int watched, const sm::Vec3& start)
 {
     int fastest = 0;
     for (int b = 1; b < bodies; ++b)
         if (w.speed(b) > w.speed(fastest))
             fastest = b;
-    std::fprintf(stderr, "%.3f s: %.3g m/s, body %d at y %.4f m\n", t, w.speed(fastest), fastest,
-                 w.position(fastest).y);
+    const sm::Vec3 d = w.position(watched) - start;
+    std::fprintf(stderr, "%.3f s: %.3g m/s, body %d at y %.4f m; watched %d drift dh %.5f dv %.5f m\n", t,
+                 w.speed(fastest), fastest, w.position(fastest).y, watched, std::hypot(d.x, d.z), d.y);
 }
 
 // Steps the stack for o.seconds; only step() is timed.
@@ -148,7 +150,7 @@ Result run_stack(PeerWorld& w, const Stack& s, const Options& o)
         if (i >= settle)
             r.speed_after = std::max(r.speed_after, r.speed_end);
         if (o.trace > 0.0 && i % std::max(1L, std::lround(o.trace / r.dt)) == 0)
-            trace_line(w, r.bodies, static_cast<double>(i) * r.dt);
+            trace_line(w, r.bodies, static_cast<double>(i) * r.dt, s.watched.back(), start.back());
     }
     for (size_t k = 0; k < s.watched.size(); ++k) {
         const sm::Vec3 d = w.position(s.watched[k]) - start[k];

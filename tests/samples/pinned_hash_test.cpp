@@ -62,9 +62,11 @@ struct Pinned {
 // Demo, 2026-12-03 (soft springs): a contact's load-tuned spring is bounded at ω·h = π (contact_solve.cpp),
 // which its most loaded contacts reach at its 2 ms step (the solver substeps stay 1 there); the others
 // name the penalty solver or do not reach the bound, and keep theirs.
+// Demo and chair, 2026-12-03 (soft rows' order): a pair's normal rows alternate their order each pass
+// (contact_solve.cpp); ball on board and pile name the penalty solver and keep theirs.
 constexpr Pinned k_pinned[] = {
-    {"demo", 400, 0x00184c47d353699cULL},
-    {"chair_with_dummy", 500, 0x870e13b924933f4eULL},
+    {"demo", 400, 0xacaf44bc0cf7b98bULL},
+    {"chair_with_dummy", 500, 0xcee88757b043facfULL},
     {"ball_on_board", 400, 0x762c42099125c181ULL},
     {"pile", 240, 0x41e0c5a53a3ebeedULL},
 };

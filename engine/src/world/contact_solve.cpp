@@ -483,12 +483,22 @@ template <class Sides> void solve_rolling(SoftPair& sp, SoftContacts& rows, cons
     sp.roll_impulse = total;
 }
 
-// Per pair, its normal rows first, so friction is bounded by this pass's normal impulses.
+// Per pair, its normal rows first, so friction is bounded by this pass's normal impulses. They are taken
+// first to last and last to first in turn: in one order every pass, Gauss–Seidel leaves the pass's
+// unconverged share of the pair's moment on the same side of the patch (the last row solved is met
+// exactly), and that bias, with the same sign every substep, leaned the 10-row pyramid out of its plane
+// at a steady 2 cm/s at the top until it slept (measured at 1/240 s: 9.1 mm sideways; the rows taken
+// last to first leaned it 3.8 mm the other way; alternating, 0.5 mm). A pair's first pass after the
+// narrowphase goes first to last (starting last to first, three boxes placed touching moved at 1.2 cm/s
+// in the first step at 1/60 s, against under 1 cm/s in one order).
 template <class Sides>
 void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Sides& sides)
 {
-    for (uint32_t i = 0; i < sp.count; ++i)
+    for (uint32_t k = 0; k < sp.count; ++k) {
+        const uint32_t i = sp.backwards ? sp.count - 1 - k : k;
         solve_normal(rows.points[sp.first + i], rows.h, rows.push_out_speed, use_bias, sides);
+    }
+    sp.backwards = !sp.backwards;
     for (uint32_t i = 0; i < sp.count; ++i)
         solve_friction(rows.points[sp.first + i], sp, use_bias, sides);
     if (sp.rolling > 0.0 && sp.roll_mass.m[0][0] != 0.0)

@@ -50,9 +50,10 @@ struct SoftPair {
     double restitution = 0.0; ///< e [-].
     double rolling = 0.0;     ///< Rolling lever arm ℓ [m] (0: no rolling row).
     Vec3 stick{};             ///< Tangential slip since the pair last slid [m], world (static friction).
-    bool sliding = false; ///< Friction reached the Coulomb disc this substep (a point's, then the pair's).
-    Mat3 roll_mass{};     ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
-    Vec3 roll_impulse{};  ///< Accumulated angular impulse on a [N·m·s].
+    bool sliding = false;   ///< Friction reached the Coulomb disc this substep (a point's, then the pair's).
+    Mat3 roll_mass{};       ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
+    Vec3 roll_impulse{};    ///< Accumulated angular impulse on a [N·m·s].
+    bool backwards = false; ///< Take the normal rows last to first (flips after each pass).
 };
 
 /// The soft solver's rows of one substep (scratch of ContactWorld).
