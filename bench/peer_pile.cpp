@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The pile of bench/pile_bench.cpp stepped by supermodal and by Bullet in one run, on one thread: N bodies
 // (density 1000 kg/m³) on a jittered grid (pitch 0.2 m, 10 layers) fall into an open box (static
-// half-spaces), dt = 1/240 s, 720 steps, μ = 0.5, restitution 0. Measured over the last 240 steps: ms
-// per step (wall, and process CPU) and the deepest overlap after the last step (supermodal: its
+// half-spaces), dt = 1/240 s, 720 steps, μ = 0.5, restitution 0. Measured over the last 240 steps, the
+// engines' steps interleaved in blocks of 24 so every engine is timed through the same spells of a
+// shared machine's speed: ms per step (wall, and process CPU) and the deepest overlap after the last
+// step (supermodal: its
 // contacts; Bullet: the distances of its contact manifolds' points). Boxes are supermodal's rounded box
 // (ε = 0.3) against btBoxShape, ellipsoids a btMultiSphereShape of one scaled sphere; Bullet runs with
 // deactivation off, then on. Both engines get the same gravity, pair friction, restitution, mass,
@@ -18,6 +20,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <span>
 
 namespace
 {
@@ -80,38 +84,51 @@ SceneSpec pile_scene(Kind kind, int n)
     return s;
 }
 
-Row measure(PeerWorld& world, const Options& o)
+// Timed steps per engine in turn [-]: 0.1 s of the pile, long enough that an engine's caches warm again.
+// On the 2-core VM one engine's time varied 2.5-fold between whole runs a minute apart (Bullet's box pile:
+// 7.6 to 19 ms per step), so engines timed one after the other compared different machines.
+constexpr int k_block_steps = 24;
+
+// Runs every world to the timed part, then times the worlds' steps in turn, a block each, to the end.
+void measure(std::span<PeerWorld* const> worlds, std::span<Row> rows, const Options& o)
 {
-    for (int i = 0; i < o.steps - o.timed_steps; ++i)
-        world.step();
-    const double wall = wall_seconds(), cpu = process_cpu_seconds();
-    for (int i = 0; i < o.timed_steps; ++i)
-        world.step();
-    Row r;
-    r.ms = 1e3 * (wall_seconds() - wall) / o.timed_steps;
-    r.cpu_ms = 1e3 * (process_cpu_seconds() - cpu) / o.timed_steps;
-    r.overlap = world.max_penetration();
-    return r;
+    for (PeerWorld* world : worlds)
+        for (int i = 0; i < o.steps - o.timed_steps; ++i)
+            world->step();
+    for (int done = 0; done < o.timed_steps; done += k_block_steps)
+        for (size_t k = 0; k < worlds.size(); ++k) {
+            const double wall = wall_seconds(), cpu = process_cpu_seconds();
+            for (int i = 0; i < std::min(k_block_steps, o.timed_steps - done); ++i)
+                worlds[k]->step();
+            rows[k].ms += 1e3 * (wall_seconds() - wall) / o.timed_steps;
+            rows[k].cpu_ms += 1e3 * (process_cpu_seconds() - cpu) / o.timed_steps;
+        }
+    for (size_t k = 0; k < worlds.size(); ++k)
+        rows[k].overlap = worlds[k]->max_penetration();
 }
 
 std::vector<Row> run_shape(Kind kind, const Options& o)
 {
     const SceneSpec scene = pile_scene(kind, o.n);
+    std::vector<std::unique_ptr<PeerWorld>> worlds;
     std::vector<Row> rows;
-    auto add = [&](std::string engine, PeerWorld& world, int substeps) {
-        Row r = measure(world, o);
-        r.engine = std::move(engine);
-        r.kind = kind;
-        r.substeps = substeps;
-        rows.push_back(r);
+    auto add = [&](std::string engine, std::unique_ptr<PeerWorld> world, int substeps) {
+        worlds.push_back(std::move(world));
+        rows.push_back({.engine = std::move(engine), .kind = kind, .substeps = substeps});
     };
     if (o.engine != "bullet")
-        add("supermodal", *make_supermodal_world(scene, o.supermodal), o.supermodal.substeps);
+        add("supermodal", make_supermodal_world(scene, o.supermodal), o.supermodal.substeps);
 #ifdef SM_BENCH_BULLET
     if (o.engine != "supermodal")
         for (const bool sleep : {false, true})
-            add(sleep ? "bullet_sleep" : "bullet", *make_bullet_world(scene, {.deactivation = sleep}), 1);
-    if (rows.front().engine == "supermodal")
+            add(sleep ? "bullet_sleep" : "bullet", make_bullet_world(scene, {.deactivation = sleep}), 1);
+#endif
+    std::vector<PeerWorld*> raw;
+    for (const auto& w : worlds)
+        raw.push_back(w.get());
+    measure(raw, rows, o);
+#ifdef SM_BENCH_BULLET
+    if (!rows.empty() && rows.front().engine == "supermodal")
         for (Row& r : rows)
             if (r.engine != "supermodal")
                 r.ratio = rows.front().cpu_ms / r.cpu_ms;
