@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "contact/broadphase.h"
 
+#include "contact/radix_sort.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -104,9 +106,9 @@ void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, Broadphase
                 for (int64_t z = z0; z <= z1; ++z)
                     io.entries.push_back({cell_key(x, y, z), i});
     }
-    std::sort(io.entries.begin(), io.entries.end(), [](const auto& l, const auto& r) {
-        return l.key != r.key ? l.key < r.key : l.proxy < r.proxy;
-    });
+    // By cell, then box: entries are made box by box, so their boxes already ascend and one stable
+    // pass by cell sorts by both.
+    radix_sort(io.entries, io.sorted_entries, [](const BroadphaseScratch::Entry& e) { return e.key; });
 }
 
 // Pairs within each cell; a pair sharing several cells is reported only in the cell holding the
@@ -165,8 +167,7 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
     bin_boxes(proxies, cell, io_scratch);
     pairs_in_cells(proxies, io_scratch.entries, cell, out_pairs);
     pairs_of_big(proxies, io_scratch.big, out_pairs);
-    std::sort(out_pairs.begin(), out_pairs.end(),
-              [](const BodyPair& l, const BodyPair& r) { return l.key() < r.key(); });
+    radix_sort(out_pairs, io_scratch.sorted_pairs, [](const BodyPair& p) { return p.key(); });
 }
 
 } // namespace supermodal

@@ -40,9 +40,11 @@ struct BroadphaseScratch {
         uint64_t key;   ///< Packed cell coordinates.
         uint32_t proxy; ///< Index into the proxies.
     };
-    std::vector<Entry> entries;  ///< One per (box, cell it covers).
-    std::vector<uint32_t> big;   ///< Boxes tested against all, ascending.
-    std::vector<double> extents; ///< For the median box size.
+    std::vector<Entry> entries;         ///< One per (box, cell it covers).
+    std::vector<Entry> sorted_entries;  ///< The sort's other buffer.
+    std::vector<BodyPair> sorted_pairs; ///< The pairs' sort's other buffer.
+    std::vector<uint32_t> big;          ///< Boxes tested against all, ascending.
+    std::vector<double> extents;        ///< For the median box size.
 };
 
 /// All pairs whose boxes overlap (touching counts), except static–static, sorted by key().

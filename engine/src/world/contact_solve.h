@@ -67,6 +67,7 @@ struct SoftContacts {
     double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
     Vec3 up{};                          ///< −g/|g|, zero without gravity.
     std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
+    std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
 };
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).

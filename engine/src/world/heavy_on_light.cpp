@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "world/heavy_on_light.h"
 
+#include "contact/radix_sort.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -98,7 +100,7 @@ void scale_heavy_on_light(SoftContacts& rows)
     }
     if (!stacked || !(rows.gravity > 0.0))
         return; // no body rests on another
-    std::sort(nodes.begin(), nodes.end());
+    radix_sort(nodes, rows.nodes_other, [](uint32_t n) { return uint64_t{n}; });
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     const std::vector<uint32_t> place = node_places(nodes);
     auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
