@@ -10,12 +10,6 @@
 namespace supermodal
 {
 
-bool overlaps(const Aabb& a, const Aabb& b, double margin)
-{
-    return a.min.x <= b.max.x + margin && b.min.x <= a.max.x + margin && a.min.y <= b.max.y + margin &&
-           b.min.y <= a.max.y + margin && a.min.z <= b.max.z + margin && b.min.z <= a.max.z + margin;
-}
-
 namespace
 {
 

@@ -52,6 +52,10 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
                             std::vector<BodyPair>& out_pairs);
 
 /// True if the two boxes overlap or touch, or come within `margin` [m] of each other.
-[[nodiscard]] bool overlaps(const Aabb& a, const Aabb& b, double margin = 0.0);
+[[nodiscard]] inline bool overlaps(const Aabb& a, const Aabb& b, double margin = 0.0)
+{
+    return a.min.x <= b.max.x + margin && b.min.x <= a.max.x + margin && a.min.y <= b.max.y + margin &&
+           b.min.y <= a.max.y + margin && a.min.z <= b.max.z + margin && b.min.z <= a.max.z + margin;
+}
 
 } // namespace supermodal
