@@ -4,11 +4,10 @@
 // half-spaces), dt = 1/240 s, 720 steps, μ = 0.5, restitution 0. Measured over the last 240 steps, the
 // engines' steps interleaved in blocks of 24 so every engine is timed through the same spells of a
 // shared machine's speed: ms per step (wall, and process CPU) and the deepest overlap after the last
-// step (supermodal: its
-// contacts; Bullet: the distances of its contact manifolds' points). Boxes are supermodal's rounded box
-// (ε = 0.3) against btBoxShape, ellipsoids a btMultiSphereShape of one scaled sphere; Bullet runs with
-// deactivation off, then on. Both engines get the same gravity, pair friction, restitution, mass,
-// inertia and step (Bullet: fixed step dt, one internal step per step).
+// step (supermodal: its contacts; Bullet: the distances of its contact manifolds' points). Boxes are
+// supermodal's rounded box (ε = 0.3) against btBoxShape, ellipsoids a btMultiSphereShape of one scaled
+// sphere; Bullet runs with deactivation off, then on. Both engines get the same gravity, pair friction,
+// restitution, mass, inertia and step (Bullet: fixed step dt, one internal step per step).
 //
 // Usage: peer_pile [N=1000] [substeps=1] [--csv FILE] [--set key=value]... (bench/peer/peer_scene.h)
 #include "peer/peer_scene.h"
@@ -90,9 +89,9 @@ SceneSpec pile_scene(Kind kind, int n)
 constexpr int k_block_steps = 24;
 
 // Runs every world to the timed part, then times the worlds' steps in turn, a block each, to the end.
-void measure(std::span<PeerWorld* const> worlds, std::span<Row> rows, const Options& o)
+void measure(std::span<const std::unique_ptr<PeerWorld>> worlds, std::span<Row> rows, const Options& o)
 {
-    for (PeerWorld* world : worlds)
+    for (const auto& world : worlds)
         for (int i = 0; i < o.steps - o.timed_steps; ++i)
             world->step();
     for (int done = 0; done < o.timed_steps; done += k_block_steps)
@@ -123,10 +122,7 @@ std::vector<Row> run_shape(Kind kind, const Options& o)
         for (const bool sleep : {false, true})
             add(sleep ? "bullet_sleep" : "bullet", make_bullet_world(scene, {.deactivation = sleep}), 1);
 #endif
-    std::vector<PeerWorld*> raw;
-    for (const auto& w : worlds)
-        raw.push_back(w.get());
-    measure(raw, rows, o);
+    measure(worlds, rows, o);
 #ifdef SM_BENCH_BULLET
     if (!rows.empty() && rows.front().engine == "supermodal")
         for (Row& r : rows)

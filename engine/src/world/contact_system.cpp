@@ -104,7 +104,6 @@ bool any_dynamic_collider(Registry& reg)
     return any;
 }
 
-// One broadphase proxy per body with a collider: its world box swept over the step.
 // A body's box for the step: its world box `box` swept over the step.
 Aabb swept_box(const WorldDef& def, const BodyModel& m, Aabb box, const Velocity& v)
 {
@@ -141,6 +140,7 @@ bool reuse_body_box(const Pose& p, Entity e, const ContactWorld& io)
            std::memcmp(&orientation, &p.orientation, sizeof(Quat)) == 0;
 }
 
+// One broadphase proxy per body with a collider: its world box swept over the step.
 void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
 {
     const size_t slots = reg.pool().slot_count();
