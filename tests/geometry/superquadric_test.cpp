@@ -19,7 +19,8 @@ constexpr double k_pi = std::numbers::pi;
 
 using supermodal::test::superquadric;
 
-// The extremes the engine supports (docs/geometry.md): ε from 0.01 (box) through 2 (octahedron) to 4 (concave star).
+// The extremes the engine supports (docs/geometry.md): ε from 0.01 (box) through 2 (octahedron) to 4 (concave
+// star).
 constexpr std::array<double, 8> k_extreme_eps = {0.01, 0.1, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
 // Aspect ratios up to 1:1000 along every axis.
 const std::array<sm::Vec3, 5> k_extreme_radii = {sm::Vec3{1, 1, 1}, sm::Vec3{1, 1, 1000},
@@ -75,6 +76,26 @@ TEST(Superquadric, EllipsoidShortcutAgreesWithLogSpace)
                               sm::Vec3{4e99, -1e99, 1e101}, sm::Vec3{-0.25, 1.0, 700}})
         EXPECT_NEAR(sm::inside_outside_log(s, p), sm::sq::log_terms(s, p).log_f,
                     k_paths_agree * (1.0 + std::abs(sm::sq::log_terms(s, p).log_f)));
+}
+
+TEST(Superquadric, EllipsoidGradientShortcutAgreesWithLogSpace)
+{
+    // The gradient's shortcut (one square root) against the log-space terms it skips, component by
+    // component relative to the gradient's length: both round a few ulps, the logs' more (exp of a
+    // sum of logs of size up to ~460 carries ~460 ulps relative).
+    constexpr double k_paths_agree = 1e-12;
+    const sm::ShapeDef s = superquadric({0.5, 2, 1000}, 1, 1);
+    for (const sm::Vec3& p : {sm::Vec3{0.1, -0.3, 20}, sm::Vec3{0.5, 0, 0}, sm::Vec3{1e-90, 3e-90, 0},
+                              sm::Vec3{4e99, -1e99, 1e101}, sm::Vec3{-0.25, 1.0, 700}}) {
+        const sm::sq::LogTerms t = sm::sq::log_terms(s, p);
+        const sm::sq::LogGradient lg = sm::sq::log_gradient(s, p, t);
+        sm::Vec3 expected;
+        for (int i = 0; i < 3; ++i)
+            expected[i] = lg.sign[i] * std::exp(0.5 * t.log_f + lg.log_mag[i]) / s.radii[i];
+        const sm::Vec3 g = sm::contact_measure_gradient(s, p);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(g[i], expected[i], k_paths_agree * sm::length(expected)) << i;
+    }
 }
 
 TEST(Superquadric, BoxAndOctahedronLimits)

@@ -64,10 +64,13 @@ struct Pinned {
 // name the penalty solver or do not reach the bound, and keep theirs.
 // Demo and chair, 2026-12-03 (soft rows' order): a pair's normal rows alternate their order each pass
 // (contact_solve.cpp); ball on board and pile name the penalty solver and keep theirs.
+// Ball on board, 2026-12-04: an ellipsoid's contact-measure gradient in closed form instead of through
+// logs, and the penetration search's residuals by a square root instead of std::hypot (rounding-level:
+// the `run` summary after 400 steps differs by at most 7e-15 rad/s, 1e-18 m); the other three keep theirs.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xacaf44bc0cf7b98bULL},
     {"chair_with_dummy", 500, 0xcee88757b043facfULL},
-    {"ball_on_board", 400, 0x762c42099125c181ULL},
+    {"ball_on_board", 400, 0x54df90b900dc4319ULL},
     {"pile", 240, 0x41e0c5a53a3ebeedULL},
 };
 

@@ -68,6 +68,14 @@ struct Sample {
     double g1 = 0.0, g2 = 0.0, h11 = 0.0, h12 = 0.0, h22 = 0.0;
 };
 
+// |(x, y)| by a square root where the squares neither overflow nor lose digits to underflow, which
+// covers every body size the engine takes; std::hypot (several times slower) elsewhere.
+double norm2d(double x, double y)
+{
+    const double s = x * x + y * y;
+    return s > 1e-290 && s < 1e290 ? std::sqrt(s) : std::hypot(x, y);
+}
+
 Sample evaluate(Query& q, const Vec3& n)
 {
     Sample s;
@@ -80,7 +88,7 @@ Sample evaluate(Query& q, const Vec3& n)
     const Vec3 w = jb.point - ja.point;
     s.f = dot(n, w);
     const double r1 = dot(q.e1, w), r2 = dot(q.e2, w);
-    s.residual = std::hypot(r1, r2);
+    s.residual = norm2d(r1, r2);
     // ∂w/∂n = J_A(−n) + J_B(n) (d/dn of −s_A(−n) is +J_A): K δ = −r with K_ij = e_i · J t_j.
     Vec3 t1, t2;
     tangent_basis(n, t1, t2);
@@ -90,7 +98,7 @@ Sample evaluate(Query& q, const Vec3& n)
         const double g1 = dot(t1, w), g2 = dot(t2, w);
         const double h11 = dot(t1, jt1) - s.f, h12 = dot(t1, jt2), h22 = dot(t2, jt2) - s.f;
         const double det = h11 * h22 - h12 * h12;
-        s.residual = std::hypot(g1, g2);
+        s.residual = norm2d(g1, g2);
         s.t1 = t1;
         s.t2 = t2;
         s.g1 = g1;
