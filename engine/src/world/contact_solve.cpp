@@ -368,6 +368,7 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
         sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
         sp.node_b = takes_impulse(first.b) ? pair.b.index : k_no_node;
     }
+    sp.rigid = sp.count > 0 && rigid_rows(sp, rows);
 }
 
 // The pair's springs and warm start: its last normal load shared by the points' weights, its friction
@@ -450,10 +451,12 @@ template <class Sides> void solve_friction(SoftPoint& p, SoftPair& sp, bool use_
     }
     double& t0 = t[0];
     double& t1 = t[1];
+    // Compared squared: a sticking row (most of a resting pile's) takes no square root.
     const double limit = sp.friction * p.normal_impulse;
-    const double len = std::sqrt(t0 * t0 + t1 * t1);
-    if (len > limit) {
+    const double len2 = t0 * t0 + t1 * t1;
+    if (len2 > limit * limit) {
         sp.sliding = true;
+        const double len = std::sqrt(len2);
         const double s = len > 0.0 ? limit / len : 0.0;
         t0 *= s;
         t1 *= s;
@@ -507,7 +510,7 @@ void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Side
 
 void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
 {
-    if (sp.count > 0 && rigid_rows(sp, rows))
+    if (sp.rigid)
         solve_pair_rows(sp, rows, use_bias, RigidSides(rows.points[sp.first]));
     else
         solve_pair_rows(sp, rows, use_bias, AnySides{});
@@ -655,7 +658,7 @@ void advance_soft_separations(SoftContacts& io)
         // disc (a rocking face unloads a corner) is not the face sliding, and forgetting the stick then
         // let a block pulled well under μ·m·g creep at 0.27 mm/s (measured). Pairs with a modal body keep
         // the point's rule: with the pair's, an elastic block pressed straight down slid 0.14 mm, not 0.05.
-        if (sp.sliding && rigid_rows(sp, io)) {
+        if (sp.sliding && sp.rigid) {
             double normal = 0.0;
             Vec3 friction{};
             pair_impulses(sp, io, normal, friction);

@@ -54,6 +54,7 @@ struct SoftPair {
     Mat3 roll_mass{};       ///< (Ia⁻¹ + Ib⁻¹)⁻¹ [kg·m²].
     Vec3 roll_impulse{};    ///< Accumulated angular impulse on a [N·m·s].
     bool backwards = false; ///< Take the normal rows last to first (flips after each pass).
+    bool rigid = false;     ///< It has points and none has a modal side (the rows' direct path).
 };
 
 /// The soft solver's rows of one substep (scratch of ContactWorld).
