@@ -37,6 +37,10 @@ struct SoftPoint {
     double approach = 0.0;       ///< Normal velocity before the solve [m/s] (< 0: closing).
     double depth = 0.0;          ///< Penetration found by the narrowphase [m].
     SoftCoefficients soft{};     ///< The point's spring (stiffened by the load it carries).
+    // The normal row's angular terms, for the passes over two rigid bodies: r × n [m] and I⁻¹(r × n)
+    // [1/(kg·m)] of each side (set_point_masses).
+    Vec3 arm_a{}, arm_b{}, turn_a{}, turn_b{};
+    Vec3 tangent_arm_a[2]{}, tangent_arm_b[2]{}, tangent_turn_a[2]{}, tangent_turn_b[2]{}; ///< Same, r × t.
 };
 
 /// One touching pair's rows: its points, and its pair-wide settings and rolling row.
