@@ -1,4 +1,5 @@
 // Tests for engine/src/geometry/superquadric.cpp.
+#include "geometry/measure_internal.h"
 #include "geometry/superquadric.h"
 #include "supermodal/geometry.h"
 #include "support/shapes.h"
@@ -96,6 +97,25 @@ TEST(Superquadric, EllipsoidGradientShortcutAgreesWithLogSpace)
         for (int i = 0; i < 3; ++i)
             EXPECT_NEAR(g[i], expected[i], k_paths_agree * sm::length(expected)) << i;
     }
+}
+
+TEST(Superquadric, MeasurePointIsTheTwoCallsBitForBit)
+{
+    // One evaluation of the terms serves the value and the gradient: no rounding of its own, so equal.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> coord(-3.0, 3.0);
+    for (double e1 : k_extreme_eps)
+        for (double e2 : k_extreme_eps) {
+            const sm::ShapeDef s = superquadric({1, 0.5, 2}, e1, e2);
+            for (int k = 0; k < 16; ++k) {
+                const sm::Vec3 p = k == 0 ? sm::Vec3{} : sm::Vec3{coord(rng), coord(rng), 1e-3 * coord(rng)};
+                const sm::MeasurePoint at(s, p);
+                EXPECT_EQ(at.value(), sm::contact_measure(s, p)) << e1 << " " << e2;
+                const sm::Vec3 g = at.gradient(), expected = sm::contact_measure_gradient(s, p);
+                for (int i = 0; i < 3; ++i)
+                    EXPECT_EQ(g[i], expected[i]) << e1 << " " << e2 << " " << i;
+            }
+        }
 }
 
 TEST(Superquadric, BoxAndOctahedronLimits)

@@ -2,6 +2,7 @@
 #include "contact/face_contact.h"
 
 #include "contact/mpr.h"
+#include "geometry/measure_internal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,12 +126,13 @@ bool lift_along(const Frame& f, const Vec3& q, const Vec3& dir, Vec3& out)
     double s = 0.0;
     for (int i = 0; i < k_line_iterations; ++i) {
         const Vec3 p = start + s * d;
-        const double m = contact_measure(f.shape(), p);
+        const MeasurePoint at(f.shape(), p); // the slope below reuses the value's terms
+        const double m = at.value();
         if (std::abs(m) <= k_line_tolerance) {
             out = f.to_world(p);
             return true;
         }
-        const double slope = dot(contact_measure_gradient(f.shape(), p), d);
+        const double slope = dot(at.gradient(), d);
         if (!(slope < 0.0) || !std::isfinite(m))
             return false;
         s -= m / slope;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "contact/narrowphase.h"
 
+#include "geometry/measure_internal.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -61,6 +63,19 @@ Vec3 measure_gradient(const Collider& c, const Vec3& p)
     return g;
 }
 
+// A point inside (measure m < 0) with the measure's gradient g there: depth and normal to first order.
+InsideTest inside_along(double m, const Vec3& g)
+{
+    InsideTest t;
+    const double gn = length(g);
+    if (!(gn > 0.0) || !std::isfinite(gn))
+        return t; // at the exact centre there is no direction to push: leave it to the other points
+    t.inside = true;
+    t.depth = -m / gn;
+    t.normal = g / gn;
+    return t;
+}
+
 // Samples of `from` tested against `against`; points and normals as seen by A (flip when `from` is B).
 // Weights are area fractions within this direction.
 int one_direction(const BodyView& from, const BodyView& against, bool from_is_a,
@@ -110,18 +125,14 @@ bool use_support_map(ContactPath path, const Collider& a, const Collider& b)
 InsideTest test_point(const Collider& c, const Vec3& p)
 {
     InsideTest t;
-    const double m = c.deformed || c.shape.type != ShapeType::Superquadric ? shape_measure(c.shape, p)
-                                                                           : contact_measure(c.shape, p);
+    if (!c.deformed && c.shape.type == ShapeType::Superquadric) {
+        const MeasurePoint at(c.shape, p); // the gradient reuses the value's terms
+        return at.value() < 0.0 ? inside_along(at.value(), at.gradient()) : t;
+    }
+    const double m = shape_measure(c.shape, p);
     if (!(m < 0.0))
         return t;
-    const Vec3 g = measure_gradient(c, p);
-    const double gn = length(g);
-    if (!(gn > 0.0) || !std::isfinite(gn))
-        return t; // at the exact centre there is no direction to push: leave it to the other points
-    t.inside = true;
-    t.depth = -m / gn;
-    t.normal = g / gn;
-    return t;
+    return inside_along(m, measure_gradient(c, p));
 }
 
 int collide_sampled(const BodyView& a, const BodyView& b, std::vector<ContactPoint>& out)

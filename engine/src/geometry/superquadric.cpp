@@ -12,6 +12,7 @@
 // callers pass superquadrics (taper and bend live in deform.cpp).
 #include "geometry/superquadric.h"
 
+#include "geometry/measure_internal.h"
 #include "supermodal/geometry.h"
 
 #include <algorithm>
@@ -23,18 +24,56 @@ namespace supermodal
 namespace
 {
 
-// ln F alone. Ellipsoids (ε1 = ε2 = 1, the common case) take F = Σ u_i² directly, one log instead of
-// seven transcendentals, while the largest u_i lies in [1e-100, 1e100]: there the squares neither
-// overflow nor underflow, and a term lost below 1e-200 of the largest changes nothing.
+// Ellipsoids (ε1 = ε2 = 1, the common case) take F = Σ u_i² with u = p ⊘ a directly while the largest
+// u_i lies in [1e-100, 1e100]: there the squares neither overflow nor underflow, and a term lost below
+// 1e-200 of the largest changes nothing. Sets u and returns whether the shortcut applies.
+bool ellipsoid_shortcut(const ShapeDef& shape, const Vec3& p, Vec3& u)
+{
+    if (shape.epsilon1 != 1.0 || shape.epsilon2 != 1.0)
+        return false;
+    u = {p.x / shape.radii.x, p.y / shape.radii.y, p.z / shape.radii.z};
+    const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
+    return m >= 1e-100 && m <= 1e100;
+}
+
+// ln F alone: one log on the ellipsoid's shortcut instead of seven transcendentals.
 double log_f_only(const ShapeDef& shape, const Vec3& p)
 {
-    if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
-        const Vec3 u{p.x / shape.radii.x, p.y / shape.radii.y, p.z / shape.radii.z};
-        const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
-        if (m >= 1e-100 && m <= 1e100)
-            return std::log(dot(u, u));
-    }
+    Vec3 u;
+    if (ellipsoid_shortcut(shape, p, u))
+        return std::log(dot(u, u));
     return sq::log_terms(shape, p).log_f;
+}
+
+// The contact measure F^(ε1/2) − 1 from ln F; expm1 keeps full relative precision of the small values
+// near the surface, where contact lives.
+double measure_from_log(const ShapeDef& shape, double log_f)
+{
+    const double s = 0.5 * shape.epsilon1 * log_f;
+    return s > sq::k_log_huge ? sq::k_huge : std::expm1(s);
+}
+
+// ∇(F^(ε1/2) − 1) from the point's log-space terms.
+Vec3 gradient_from_terms(const ShapeDef& shape, const Vec3& p, const sq::LogTerms& t)
+{
+    const sq::LogGradient g = sq::log_gradient(shape, p, t);
+    const double s = 0.5 * shape.epsilon1 * t.log_f;
+    Vec3 grad;
+    for (int i = 0; i < 3; ++i) {
+        if (g.sign[i] == 0.0)
+            continue;
+        // Beside a cusp plane (ε > 2) the true slope grows without bound: saturate instead.
+        const double v = std::exp(std::min(s + g.log_mag[i], sq::k_log_huge)) / shape.radii[i];
+        grad[i] = g.sign[i] * std::min(v, sq::k_huge);
+    }
+    return grad;
+}
+
+// The ellipsoid's ∇(√F − 1) = u ⊘ (a·√F): one square root instead of eleven transcendentals.
+Vec3 ellipsoid_gradient(const ShapeDef& shape, const Vec3& u)
+{
+    const double root = std::sqrt(dot(u, u));
+    return {u.x / (shape.radii.x * root), u.y / (shape.radii.y * root), u.z / (shape.radii.z * root)};
 }
 
 } // namespace
@@ -53,36 +92,33 @@ double inside_outside(const ShapeDef& shape, const Vec3& p)
 
 double contact_measure(const ShapeDef& shape, const Vec3& p)
 {
-    // expm1 keeps full relative precision of the small values near the surface, where contact lives.
-    const double s = 0.5 * shape.epsilon1 * log_f_only(shape, p);
-    return s > sq::k_log_huge ? sq::k_huge : std::expm1(s);
+    return measure_from_log(shape, log_f_only(shape, p));
 }
 
 Vec3 contact_measure_gradient(const ShapeDef& shape, const Vec3& p)
 {
-    if (shape.epsilon1 == 1.0 && shape.epsilon2 == 1.0) {
-        // The ellipsoid: ∇(√F − 1) = u ⊘ (a·√F) with u = p ⊘ a, one square root instead of the eleven
-        // transcendentals below (they were a twentieth of the ellipsoid pile's step), in the range
-        // where log_f_only takes its own shortcut.
-        const Vec3 u{p.x / shape.radii.x, p.y / shape.radii.y, p.z / shape.radii.z};
-        const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
-        if (m >= 1e-100 && m <= 1e100) {
-            const double root = std::sqrt(dot(u, u));
-            return {u.x / (shape.radii.x * root), u.y / (shape.radii.y * root), u.z / (shape.radii.z * root)};
-        }
+    Vec3 u;
+    if (ellipsoid_shortcut(shape, p, u))
+        return ellipsoid_gradient(shape, u);
+    return gradient_from_terms(shape, p, sq::log_terms(shape, p));
+}
+
+MeasurePoint::MeasurePoint(const ShapeDef& shape, const Vec3& p) : m_shape(&shape), m_p(p)
+{
+    Vec3 u;
+    m_shortcut = ellipsoid_shortcut(shape, p, u);
+    if (m_shortcut) {
+        m_p = u; // the gradient needs u alone
+        m_value = measure_from_log(shape, std::log(dot(u, u)));
+        return;
     }
-    const sq::LogTerms t = sq::log_terms(shape, p);
-    const sq::LogGradient g = sq::log_gradient(shape, p, t);
-    const double s = 0.5 * shape.epsilon1 * t.log_f;
-    Vec3 grad;
-    for (int i = 0; i < 3; ++i) {
-        if (g.sign[i] == 0.0)
-            continue;
-        // Beside a cusp plane (ε > 2) the true slope grows without bound: saturate instead.
-        const double v = std::exp(std::min(s + g.log_mag[i], sq::k_log_huge)) / shape.radii[i];
-        grad[i] = g.sign[i] * std::min(v, sq::k_huge);
-    }
-    return grad;
+    m_terms = sq::log_terms(shape, p);
+    m_value = measure_from_log(shape, m_terms.log_f);
+}
+
+Vec3 MeasurePoint::gradient() const
+{
+    return m_shortcut ? ellipsoid_gradient(*m_shape, m_p) : gradient_from_terms(*m_shape, m_p, m_terms);
 }
 
 Vec3 implicit_normal(const ShapeDef& shape, const Vec3& p)
