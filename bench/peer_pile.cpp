@@ -141,13 +141,17 @@ void report(const std::vector<Row>& rows, const Options& o)
                     r.substeps, r.ms, r.cpu_ms, 1e3 * r.overlap, r.ratio);
     if (o.csv.empty())
         return;
-    std::ofstream f(o.csv);
+    // Appends, so repeated runs (this VM's speed drifts) collect in one table; the header goes first only.
+    const bool fresh = !std::ifstream(o.csv).good();
+    std::ofstream f(o.csv, std::ios::app);
+    if (fresh) {
 #ifdef SM_BENCH_BULLET
-    f << "# peer: " << bullet_name() << ", Bullet box and ellipsoid margin " << BulletOptions{}.margin
-      << " m\n";
+        f << "# peer: " << bullet_name() << ", Bullet box and ellipsoid margin " << BulletOptions{}.margin
+          << " m\n";
 #endif
-    f << "date,machine,engine,shape,n,substeps,ms_per_step,cpu_ms_per_step,end_overlap_m,ratio_sm_over_"
-         "peer\n";
+        f << "date,machine,engine,shape,n,substeps,ms_per_step,cpu_ms_per_step,end_overlap_m,ratio_sm_over_"
+             "peer\n";
+    }
     const std::string date = today(), machine = machine_name();
     for (const Row& r : rows) {
         char line[256];
@@ -175,7 +179,7 @@ int main(int argc, char** argv)
         ->delimiter(',');
     app.add_option("--engine", o.engine, "all, supermodal or bullet")
         ->check(CLI::IsMember({"all", "supermodal", "bullet"}));
-    app.add_option("--csv", o.csv, "Write the table as CSV here");
+    app.add_option("--csv", o.csv, "Append the table to this CSV file (header when new)");
     app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
     app.add_option("--solver", solver, "supermodal contact solver (penalty or soft)");
     CLI11_PARSE(app, argc, argv);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # supermodal against Bullet: the pile (bench/peer_pile.cpp) and the stacks (bench/stack_bench.cpp), both
-# engines in one run on one thread, Release. Writes docs/bench/peer_pile.csv, docs/bench/stack.csv and
+# engines in one run on one thread, Release. Appends to docs/bench/peer_pile.csv; writes docs/bench/stack.csv and
 # docs/bench/stack.png. Bullet (libbullet-dev) is installed for these benchmarks only; the engine never
 # links it. Not part of CI: speed is measured here, never asserted.
 # Usage: scripts/bench_peer.sh [N [substeps]]   (pile bodies, default 1000; supermodal substeps, default 1)
