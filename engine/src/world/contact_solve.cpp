@@ -155,24 +155,6 @@ struct RigidSides {
           free_b(first.b.v != nullptr && !(first.b.m != nullptr && first.b.m->inv_mass == 0.0))
     {
     }
-    [[nodiscard]] static Vec3 velocity_of(const Side& s)
-    {
-        return s.v == nullptr ? Vec3{} : s.v->linear + cross(s.v->angular, s.r);
-    }
-    [[nodiscard]] Vec3 velocity(const SoftPoint& p) const { return velocity_of(p.a) - velocity_of(p.b); }
-    static void push_on(const Side& s, const Vec3& impulse)
-    {
-        s.v->linear += s.inv_mass * impulse;
-        s.v->angular += s.inv_inertia * (cross(s.r, impulse) + Vec3{}); // as push() with no angular impulse
-    }
-    void apply(SoftPoint& p, const Vec3& impulse) const
-    {
-        if (free_a && p.a.inv_mass != 0.0)
-            push_on(p.a, impulse);
-        const Vec3 on_b = -1.0 * impulse;
-        if (free_b && p.b.inv_mass != 0.0)
-            push_on(p.b, on_b);
-    }
     // The normal row through its precomputed arms (SoftPoint::arm_a…): three products per side instead
     // of a cross product and an inertia product (the normal rows were a third of the passes' time).
     [[nodiscard]] double normal_velocity(const SoftPoint& p) const
