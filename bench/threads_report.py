@@ -70,16 +70,16 @@ def plot(out_csv, lines):
     data = out_csv[:-4] + ".dat"
     with open(data, "w", encoding="utf-8") as f:
         f.write("# scene build speedup ms_1 ms_2\n")
-        ms = {(r[5], r[4], int(r[7])): r[8] for r in lines}
+        ms = {(r[5], r[4], r[3], int(r[7])): r[8] for r in lines}  # a run: scene, build, commit
         for r in lines:
             if int(r[7]) == 2:
                 # Three short lines, so six or more bars keep their labels apart.
-                ms_1 = float(ms[(r[5], r[4], 1)])
-                label = f"{r[5].replace('.json', '')}\\n{r[4]}\\n{ms_1:.1f} -> {float(r[8]):.1f} ms"
+                ms_1 = float(ms[(r[5], r[4], r[3], 1)])
+                label = f"{r[5].replace('.json', '')}\\n{r[4]} {r[0][5:]}\\n{ms_1:.1f} -> {float(r[8]):.1f} ms"
                 f.write(f'"{label}" {r[10]}\n')
     png = out_csv[:-4] + ".png"
     script = f"""
-set terminal pngcairo size 1000,500 font "Helvetica,11" noenhanced
+set terminal pngcairo size 1400,500 font "Helvetica,10" noenhanced
 set output "{png}"
 set style data histograms
 set style fill solid 0.8 border -1
