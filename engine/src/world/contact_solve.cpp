@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "world/contact_solve.h"
 
+#include "core/parallel.h"
 #include "dynamics/step_context.h"
 #include "world/contact_system.h"
 #include "world/heavy_on_light.h"
@@ -618,7 +619,8 @@ void set_point_masses(SoftPoint& p)
     p.tangent_mass[1] = inverse_along(kt, p.tangent[1]);
 }
 
-void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io)
+void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
+                           ContactWorld& io)
 {
     SoftContacts& rows = io.soft;
     rows.h = ctx.h;
@@ -645,9 +647,12 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Regist
     }
     rows.points.resize(point_count);
     prepare_modal_substep(reg, ctx.h);
-    // Each pair writes its own rows; the warm start pushes the bodies, so it runs in pair order.
-    for (SoftPair& sp : rows.pairs)
-        make_pair_rows(reg, io, sp, ctx.h);
+    // Each pair writes its own rows and only reads the bodies, so the pairs split across the threads
+    // with the same bits on any count; the warm start pushes the bodies, so it runs in pair order.
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            make_pair_rows(reg, io, rows.pairs[i], ctx.h);
+    });
     scale_heavy_on_light(rows);
     for (SoftPair& sp : rows.pairs)
         warm_start_pair(def, reg, io, sp, ctx.h);

@@ -20,6 +20,7 @@
 namespace supermodal
 {
 
+class Parallel;
 struct ContactWorld;
 struct StepContext;
 struct StepWarnings;
@@ -76,7 +77,8 @@ struct SoftContacts {
 };
 
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
-void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, Registry& reg, ContactWorld& io);
+void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
+                           ContactWorld& io);
 /// A solver substep on the last substep's rows (no narrowphase between): their gaps as the bodies moved
 /// them, their impulses applied again as the warm start; a modal side is made anew for this substep.
 void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io);

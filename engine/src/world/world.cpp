@@ -213,7 +213,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         if (reuse)
             refresh_soft_contacts(ctx, reg, contact);
         else
-            prepare_soft_contacts(def.contact, ctx, reg, contact);
+            prepare_soft_contacts(def.contact, ctx, parallel, reg, contact);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
         apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints,
                                 soft_contact_rows(contact.soft, true));
