@@ -90,14 +90,50 @@ TEST(Penetration, WarmStartedSearchEqualsTheColdQuery)
 
 TEST(Penetration, ASeparatingStartEndsTheSearchWithoutContact)
 {
-    // Two ellipsoids 1 mm apart: the search from the centre line finds that it separates them at its
-    // first evaluation (two support-map calls), an exact answer.
+    // Two ellipsoids 1 mm apart (not spheres: those take the closed form below): the search from the
+    // centre line finds that it separates them at its first evaluation (two support-map calls), an
+    // exact answer.
     const sm::Collider c =
-        sm::make_collider(sm::test::superquadric({0.05, 0.05, 0.05}, 1.0, 1.0), {}, 0.0, 4000);
+        sm::make_collider(sm::test::superquadric({0.05, 0.05, 0.04}, 1.0, 1.0), {}, 0.0, 4000);
     const sm::BodyView a{&c, {0, 0.101, 0}, {}, {}}, b{&c, {}, {}, {}};
     const sm::Penetration p = sm::find_penetration(a, b, {0, 1, 0});
     EXPECT_FALSE(p.hit);
     EXPECT_EQ(p.support_calls, 2);
+}
+
+TEST(Penetration, TwoSpheresTakeTheClosedForm)
+{
+    // Spheres of radii 0.05 and 0.03 m with centres 0.07 m apart along (2, 3, 6)/7: the least overlap
+    // is 0.01 m along the line of centres, with no support evaluation. The centres sit near (1, 2, 3) m,
+    // where a coordinate's rounding is 4.4e-16 m; over the 0.07 m between them that turns the normal by
+    // up to ~1e-14, so 1e-13 bounds every value. Turned bodies keep it (a sphere has no orientation),
+    // apart is not a hit, and coincident centres leave it to the search.
+    constexpr double k_round_off = 1e-13;
+    const sm::Collider big =
+        sm::make_collider(sm::test::superquadric({0.05, 0.05, 0.05}, 1.0, 1.0), {}, 0.0, 4000);
+    const sm::Collider small =
+        sm::make_collider(sm::test::superquadric({0.03, 0.03, 0.03}, 1.0, 1.0), {}, 0.0, 4000);
+    const sm::Vec3 n{2.0 / 7.0, 3.0 / 7.0, 6.0 / 7.0};
+    const sm::Quat turned = sm::normalized(sm::Quat{0.9, 0.1, -0.3, 0.2});
+    const sm::BodyView a{&big, {1.0 + 0.02, 2.0 + 0.03, 3.0 + 0.06}, turned, {}},
+        b{&small, {1, 2, 3}, {}, {}};
+    const sm::Penetration p = sm::find_penetration(a, b, {});
+    ASSERT_TRUE(p.hit);
+    EXPECT_EQ(p.support_calls, 0);
+    EXPECT_NEAR(p.depth, 0.01, k_round_off);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(p.normal[i], n[i], k_round_off);
+        EXPECT_NEAR(p.on_a[i], a.position[i] - 0.05 * n[i], k_round_off);
+        EXPECT_NEAR(p.on_b[i], b.position[i] + 0.03 * n[i], k_round_off);
+    }
+    const sm::BodyView far{&big, {1.0, 2.1, 3.0}, {}, {}};
+    const sm::Penetration apart = sm::find_penetration(far, b, {});
+    EXPECT_FALSE(apart.hit);
+    EXPECT_NEAR(apart.depth, 0.08 - 0.1, k_round_off);
+    const sm::BodyView same{&big, {1, 2, 3}, {}, {}};
+    const sm::Penetration centred = sm::find_penetration(same, b, {});
+    EXPECT_TRUE(centred.hit);
+    EXPECT_GT(centred.support_calls, 0);
 }
 
 namespace

@@ -304,11 +304,52 @@ bool proven(const BodyView& a, const BodyView& b, const Penetration& r)
 
 } // namespace
 
+namespace
+{
+
+// The radius of a collider that is an undeformed sphere [m], else 0.
+double sphere_radius(const Collider& c)
+{
+    const ShapeDef& s = c.shape;
+    const bool sphere = s.type == ShapeType::Superquadric && !c.deformed && s.epsilon1 == 1.0 &&
+                        s.epsilon2 == 1.0 && s.radii.x == s.radii.y && s.radii.y == s.radii.z;
+    return sphere ? s.radii.x : 0.0;
+}
+
+// Two spheres: the normal along the line of centres, where both targets' searches end (the line is
+// the ray from centre to centre, and the overlap along it is the least). False when the centres
+// coincide, where no direction is preferred.
+bool sphere_pair(const BodyView& a, const BodyView& b, Penetration& out)
+{
+    const double ra = sphere_radius(*a.collider), rb = sphere_radius(*b.collider);
+    if (!(ra > 0.0) || !(rb > 0.0))
+        return false;
+    const Vec3 ca = a.position - rotate(a.orientation, a.collider->com_shape);
+    const Vec3 cb = b.position - rotate(b.orientation, b.collider->com_shape);
+    const Vec3 d = ca - cb;
+    const double len = length(d);
+    if (!(len > 0.0) || !std::isfinite(len))
+        return false;
+    const Vec3 n = d / len;
+    out = {.hit = ra + rb - len > 0.0,
+           .converged = true,
+           .depth = ra + rb - len, // < 0 apart, as the search's
+           .normal = n,
+           .on_a = ca - ra * n,
+           .on_b = cb + rb * n};
+    out.point = 0.5 * (out.on_a + out.on_b);
+    return true;
+}
+
+} // namespace
+
 Penetration find_penetration(const BodyView& a, const BodyView& b, const Vec3& warm, PenetrationTarget target)
 {
     if (!is_finite(a.position) || !is_finite(a.orientation) || !is_finite(b.position) ||
         !is_finite(b.orientation))
         return {};
+    if (Penetration spheres; sphere_pair(a, b, spheres))
+        return spheres; // closed form: no support evaluations
     int calls = 0;
     if (length(warm) > 0.0 && is_finite(warm)) {
         Penetration r = refine_penetration(a, b, warm, target);
