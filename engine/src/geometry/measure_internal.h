@@ -19,7 +19,7 @@ class MeasurePoint
 
   private:
     const ShapeDef* m_shape;
-    Vec3 m_p;
+    Vec3 m_p;                ///< The point, or u = p ⊘ a on the ellipsoid's shortcut.
     sq::LogTerms m_terms;    ///< Unset on the ellipsoid's shortcut (m_shortcut).
     bool m_shortcut = false; ///< An ellipsoid in the range where F is summed directly.
     double m_value = 0.0;
