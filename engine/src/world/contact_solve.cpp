@@ -158,14 +158,19 @@ struct RigidSides {
     }
     // The normal row through its precomputed arms (SoftPoint::arm_a…): three products per side instead
     // of a cross product and an inertia product (the normal rows were a third of the passes' time).
+    [[nodiscard]] static double row_rate(const SoftPoint& p, const Vec3& d, const Vec3& arm_a,
+                                         const Vec3& arm_b)
+    {
+        double rate = 0.0;
+        if (p.a.v != nullptr)
+            rate += dot(p.a.v->linear, d) + dot(p.a.v->angular, arm_a);
+        if (p.b.v != nullptr)
+            rate -= dot(p.b.v->linear, d) + dot(p.b.v->angular, arm_b);
+        return rate;
+    }
     [[nodiscard]] double normal_velocity(const SoftPoint& p) const
     {
-        double vn = 0.0;
-        if (p.a.v != nullptr)
-            vn += dot(p.a.v->linear, p.normal) + dot(p.a.v->angular, p.arm_a);
-        if (p.b.v != nullptr)
-            vn -= dot(p.b.v->linear, p.normal) + dot(p.b.v->angular, p.arm_b);
-        return vn;
+        return row_rate(p, p.normal, p.arm_a, p.arm_b);
     }
     void apply_normal(SoftPoint& p, double impulse) const
     {
@@ -181,14 +186,8 @@ struct RigidSides {
     // The friction rows likewise through theirs (SoftPoint::tangent_arm_a…).
     void tangent_rates(const SoftPoint& p, double out[2]) const
     {
-        for (int i = 0; i < 2; ++i) {
-            double rate = 0.0;
-            if (p.a.v != nullptr)
-                rate += dot(p.a.v->linear, p.tangent[i]) + dot(p.a.v->angular, p.tangent_arm_a[i]);
-            if (p.b.v != nullptr)
-                rate -= dot(p.b.v->linear, p.tangent[i]) + dot(p.b.v->angular, p.tangent_arm_b[i]);
-            out[i] = rate;
-        }
+        for (int i = 0; i < 2; ++i)
+            out[i] = row_rate(p, p.tangent[i], p.tangent_arm_a[i], p.tangent_arm_b[i]);
     }
     void apply_tangent(SoftPoint& p, double d0, double d1) const
     {
