@@ -132,3 +132,77 @@ TEST(Manifold, ASmoothBodyRollingOnAPlaneKeepsOnlyItsSupportPoint)
     EXPECT_NEAR(pts[0].depth, 0.01, 1e-9); // the support point's depth, not a mix with the old point's
     EXPECT_NEAR(pts[0].point.x, 0.0, 1e-9);
 }
+
+TEST(Manifold, ASteadyPairReusesItsPointsWithinTheStatedBound)
+{
+    // Two rounded boxes face on face, 1 mm deep, queried until steady. With the upper one then moved
+    // and the lower one turned by just under the reuse tolerances, the pair evaluates no support map,
+    // and each point's depth is the separation of the two true surfaces along the normal where its
+    // point on A lies (found by bisection on B's inside-outside function) within manifold_reuse_bound.
+    // Moved by twice the tolerance, it queries.
+    const sm::Collider box = collider({0.05, 0.05, 0.05}, 0.3);
+    const double r = 0.05, reach = std::sqrt(3.0) * 0.05;
+    const double move = sm::k_manifold_reuse_move_rel * r, turn = sm::k_manifold_reuse_turn;
+    const double bound = sm::manifold_reuse_bound(r, reach);
+    auto view = [&box](sm::Vec3 p, sm::Quat q) {
+        return sm::BodyView{&box, p, q, {p - sm::Vec3{0.09, 0.09, 0.09}, p + sm::Vec3{0.09, 0.09, 0.09}}};
+    };
+    // Where the line p + t·n leaves B's surface, t in [lo, hi] (B inside at lo, outside at hi).
+    auto surface_along = [&box](const sm::BodyView& b, sm::Vec3 p, sm::Vec3 n, double lo, double hi) {
+        auto inside = [&](double t) {
+            return sm::shape_measure(box.shape, sm::inv_rotate(b.orientation, p + t * n - b.position)) < 0.0;
+        };
+        EXPECT_TRUE(inside(lo));
+        EXPECT_FALSE(inside(hi));
+        for (int i = 0; i < 60; ++i)
+            (inside(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+        return 0.5 * (lo + hi);
+    };
+    uint32_t seed = 7;
+    auto unit = [&seed] { // in [-1, 1]
+        seed = seed * 1664525u + 1013904223u;
+        return 2.0 * (seed >> 8) / double(1u << 24) - 1.0;
+    };
+    const sm::BodyView lower = view({0, 0, 0}, sm::Quat::identity());
+    double worst = 0.0;
+    int reused = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+        const sm::BodyView upper = view({0.01 * unit(), 0.099, 0.01 * unit()}, sm::Quat::identity());
+        sm::PairManifold m;
+        std::vector<sm::ContactPoint> pts;
+        for (int q = 0; q <= sm::k_manifold_steady_queries + 1; ++q) {
+            pts.clear();
+            ASSERT_GT(sm::collide_manifold(upper, lower, m, pts, true), 0);
+        }
+        ASSERT_GE(m.steady, sm::k_manifold_steady_queries);
+        const sm::PairManifold steady = m;
+        const sm::Vec3 dir = sm::normalized(sm::Vec3{unit(), unit(), unit()});
+        const sm::Vec3 axis = sm::normalized(sm::Vec3{unit(), unit(), unit()});
+        const sm::BodyView moved = view(upper.position + 0.99 * move * dir, sm::Quat::identity());
+        const sm::BodyView turned = view({0, 0, 0}, sm::quat_from_rotation_vector(0.99 * turn * axis));
+        sm::QueryCost cost;
+        pts.clear();
+        ASSERT_GT(sm::collide_manifold(moved, turned, m, pts, true, &cost), 0);
+        EXPECT_EQ(cost.support_calls, 0) << "trial " << trial;
+        ASSERT_EQ(static_cast<int>(pts.size()), m.count);
+        for (int i = 0; i < m.count; ++i) {
+            const sm::Vec3 pa =
+                moved.position + sm::rotate(moved.orientation, m.points[static_cast<size_t>(i)].local_a);
+            const sm::Vec3 n = pts[static_cast<size_t>(i)].normal;
+            const double depth = pts[static_cast<size_t>(i)].depth;
+            if (!(depth > 0.0))
+                continue;
+            worst = std::max(
+                worst, std::abs(depth - surface_along(turned, pa, n, depth - 0.5 * r, depth + 0.5 * r)));
+            ++reused;
+        }
+        sm::PairManifold again = steady;
+        sm::QueryCost far_cost;
+        pts.clear();
+        (void)sm::collide_manifold(view(upper.position + 2.0 * move * dir, sm::Quat::identity()), lower,
+                                   again, pts, true, &far_cost);
+        EXPECT_GT(far_cost.support_calls, 0) << "trial " << trial;
+    }
+    EXPECT_GT(reused, 50);
+    EXPECT_LE(worst, bound);
+}

@@ -70,11 +70,16 @@ struct Pinned {
 // Demo and chair, 2026-12-04 (soft rows' arithmetic): the passes over two rigid bodies read and push the
 // normal and friction rows through r × n and I⁻¹(r × n) made once per point instead of a cross product
 // and an inertia product per row and pass (rounding-level per pass; the trajectories then part).
+// Demo, chair and pile, 2026-12-04 (manifold reuse): each support-map manifold hashes the relative pose of
+// its last query and its steady count; a steady pair of face-patch bodies that barely moved measures its
+// stored points instead of querying (contact/manifold.h), which changes demo's and chair's trajectories;
+// the pile's ellipsoids never reuse (its hash changes by the new words alone); ball on board has no
+// support-map pair and keeps its hash.
 constexpr Pinned k_pinned[] = {
-    {"demo", 400, 0x7c67113b2aba45b8ULL},
-    {"chair_with_dummy", 500, 0x4d7676093fb39179ULL},
+    {"demo", 400, 0xa150cd98cb3497bdULL},
+    {"chair_with_dummy", 500, 0xeeb7eb0b6d88c3e9ULL},
     {"ball_on_board", 400, 0x54df90b900dc4319ULL},
-    {"pile", 240, 0x41e0c5a53a3ebeedULL},
+    {"pile", 240, 0x79e37d9f2636e774ULL},
 };
 
 class PinnedHash : public testing::TestWithParam<Pinned>

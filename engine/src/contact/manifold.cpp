@@ -376,15 +376,85 @@ int collide_faces(const BodyView& a, const BodyView& b, double r, bool speculati
     return -1;
 }
 
-} // namespace
+// B's pose in A's frame (the body's world pose when B is a plane).
+struct RelativePose {
+    Vec3 offset{}; // [m]
+    Quat turn{};
+};
 
-double speculative_gap(const Collider& a, const Collider& b)
+RelativePose relative_pose(const BodyView& a, const BodyView* b)
 {
-    return k_separate_rel * std::min(smallest_radius(a), smallest_radius(b));
+    if (b == nullptr)
+        return {a.position, a.orientation};
+    return {to_body(a, b->position), conjugate(a.orientation) * b->orientation};
 }
 
-int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
-                     bool speculative, QueryCost* io_cost)
+// Whether the pair is still within the reuse tolerances of its last full query.
+bool within_reuse(const PairManifold& io, const RelativePose& now, double r)
+{
+    if (io.steady < k_manifold_steady_queries || io.count == 0)
+        return false;
+    const double move = k_manifold_reuse_move_rel * r;
+    const Vec3 d = now.offset - io.query_offset;
+    const Quat turn = conjugate(io.query_turn) * now.turn; // sin(angle/2) is its vector part's length
+    const double half_sin = std::sin(0.5 * k_manifold_reuse_turn);
+    return dot(d, d) <= move * move &&
+           turn.x * turn.x + turn.y * turn.y + turn.z * turn.z <= half_sin * half_sin;
+}
+
+// After a full query: the pose it was made at, and whether it found the points and normal the one
+// before it did (k_manifold_steady_queries).
+void remember_query(PairManifold& io, const PairManifold& before, const RelativePose& now, double r)
+{
+    const double move = k_manifold_reuse_move_rel * r;
+    bool same = io.count > 0 && io.count == before.count;
+    for (int i = 0; same && i < io.count; ++i) {
+        const Vec3 d =
+            io.points[static_cast<size_t>(i)].local_a - before.points[static_cast<size_t>(i)].local_a;
+        const Vec3 e =
+            io.points[static_cast<size_t>(i)].local_b - before.points[static_cast<size_t>(i)].local_b;
+        same = dot(d, d) <= move * move && dot(e, e) <= move * move;
+    }
+    const Vec3 dn = io.normal - before.normal;
+    io.steady = same && dot(dn, dn) <= k_manifold_reuse_turn * k_manifold_reuse_turn ? io.steady + 1 : 0;
+    io.query_offset = now.offset;
+    io.query_turn = now.turn;
+}
+
+// The stored points where the bodies carried them, measured along the stored normal n (from B towards
+// A, world; against the plane n·x = plane_offset when b is null), appended as finish does.
+int remeasure(const BodyView& a, const BodyView* b, const Vec3& n, double plane_offset, bool flip,
+              bool speculative, const PairManifold& io, std::vector<ContactPoint>& out)
+{
+    std::array<Candidate, PairManifold::k_capacity> pts{};
+    int touching = 0;
+    for (int i = 0; i < io.count; ++i) {
+        const ManifoldPoint& m = io.points[static_cast<size_t>(i)];
+        Candidate& c = pts[static_cast<size_t>(i)];
+        c.pa = to_world(a, m.local_a);
+        if (b != nullptr) {
+            c.pb = to_world(*b, m.local_b);
+            c.depth = dot(c.pb - c.pa, n);
+        } else {
+            c.depth = plane_offset - dot(n, c.pa);
+            c.pb = c.pa + c.depth * n;
+        }
+        touching += c.depth > 0.0 ? 1 : 0;
+    }
+    int appended = 0;
+    for (int i = 0; i < io.count; ++i) {
+        const Candidate& c = pts[static_cast<size_t>(i)];
+        if (!(c.depth > 0.0) && !speculative)
+            continue;
+        out.push_back(
+            {0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, c.depth > 0.0 ? 1.0 / touching : 0.0, 1.0});
+        ++appended;
+    }
+    return appended;
+}
+
+int query_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
+                   bool speculative, QueryCost* io_cost)
 {
     QueryCost unused;
     int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
@@ -463,8 +533,8 @@ int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std
     return finish(a, &b, fresh, old, n, merge, false, speculative, io, out);
 }
 
-int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
-                           std::vector<ContactPoint>& out, bool speculative, QueryCost* io_cost)
+int query_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
+                         std::vector<ContactPoint>& out, bool speculative, QueryCost* io_cost)
 {
     QueryCost unused;
     int& calls = (io_cost != nullptr ? *io_cost : unused).support_calls;
@@ -508,6 +578,51 @@ int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool bod
             return deep;
         });
     return finish(body, nullptr, fresh, old, n, merge, !body_is_a, speculative, io, out);
+}
+
+} // namespace
+
+double manifold_reuse_bound(double r, double reach)
+{
+    return 2.0 * (k_manifold_reuse_move_rel * r + reach * k_manifold_reuse_turn);
+}
+
+double speculative_gap(const Collider& a, const Collider& b)
+{
+    return k_separate_rel * std::min(smallest_radius(a), smallest_radius(b));
+}
+
+int collide_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
+                     bool speculative, QueryCost* io_cost)
+{
+    // Bodies with face patches rest on their stored points while the pair barely moves; smooth bodies
+    // roll their contact along, which a fixed pair of material points does not follow.
+    if (!(has_face_patches(*a.collider) && has_face_patches(*b.collider)))
+        return query_manifold(a, b, io, out, speculative, io_cost);
+    const double r = std::min(smallest_radius(*a.collider), smallest_radius(*b.collider));
+    const RelativePose now = relative_pose(a, &b);
+    if (within_reuse(io, now, r))
+        return remeasure(a, &b, rotate(a.orientation, io.normal), 0.0, false, speculative, io, out);
+    const PairManifold before = io;
+    const int appended = query_manifold(a, b, io, out, speculative, io_cost);
+    remember_query(io, before, now, r);
+    return appended;
+}
+
+int collide_manifold_plane(const BodyView& body, const BodyView& plane, bool body_is_a, PairManifold& io,
+                           std::vector<ContactPoint>& out, bool speculative, QueryCost* io_cost)
+{
+    if (!has_face_patches(*body.collider))
+        return query_manifold_plane(body, plane, body_is_a, io, out, speculative, io_cost);
+    const RelativePose now = relative_pose(body, nullptr);
+    const double r = smallest_radius(*body.collider);
+    if (within_reuse(io, now, r))
+        return remeasure(body, nullptr, normalized(plane.collider->shape.plane_normal),
+                         plane.collider->shape.plane_offset, !body_is_a, speculative, io, out);
+    const PairManifold before = io;
+    const int appended = query_manifold_plane(body, plane, body_is_a, io, out, speculative, io_cost);
+    remember_query(io, before, now, r);
+    return appended;
 }
 
 } // namespace supermodal

@@ -505,4 +505,11 @@ void update_contact_anchors(const StepContext& ctx, const Registry& reg, const P
     });
 }
 
+void requery_pairs_of(ContactWorld& io, Entity body)
+{
+    for (PairManifold& m : io.manifolds)
+        if (static_cast<uint32_t>(m.key >> 32) == body.index || static_cast<uint32_t>(m.key) == body.index)
+            m.steady = 0;
+}
+
 } // namespace supermodal

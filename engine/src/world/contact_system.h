@@ -100,6 +100,9 @@ struct ContactWorld {
 [[nodiscard]] int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
 /// Narrowphase for this substep's poses.
 void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io_contact);
+/// Makes the next narrowphase query every awake pair of `body` afresh (its surface changed): none reuses
+/// its stored points.
+void requery_pairs_of(ContactWorld& io_contact, Entity body);
 /// Penalty normal and friction forces into velocities; updates the step's event accumulators.
 void apply_penalty_forces(const WorldDef& def, const StepContext& ctx, Registry& reg, const Parallel& par,
                           ContactWorld& io_contact, StepWarnings& io_warnings);

@@ -113,6 +113,7 @@ Status set_body_shape(World& world, Entity body, const ShapeDef& shape)
     m.shape = shape;
     set_mass_model(m, shape, density > 0.0 ? density : 1000.0);
     m.collider = collider_for(w, shape, m.mass.center_of_mass);
+    requery_pairs_of(w.contact, body); // their stored points lay on the old surface
     Pose& p = w.reg.get<Pose>(body);
     p.position = origin + rotate(p.orientation, m.mass.center_of_mass);
     p.prev_position = p.position;

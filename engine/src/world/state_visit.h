@@ -24,7 +24,7 @@ enum class Field : uint8_t {
 };
 
 /// Bump when the order or meaning of the visited fields changes: old snapshots are then refused.
-inline constexpr uint32_t k_snapshot_layout_version = 6;
+inline constexpr uint32_t k_snapshot_layout_version = 7;
 
 [[nodiscard]] inline uint64_t entity_key(Entity e)
 {
@@ -154,6 +154,9 @@ template <class V, class M> void visit_manifolds(V& v, M& manifolds)
             visit_vec3(v, m.points[static_cast<size_t>(i)].local_b, Field::Hashed);
         }
         visit_vec3(v, m.normal, Field::Hashed); // where the next penetration search starts
+        v.integer(m.steady, Field::Hashed);     // and whether it searches at all
+        visit_vec3(v, m.query_offset, Field::Hashed);
+        visit_quat(v, m.query_turn, Field::Hashed);
     }
 }
 
