@@ -28,6 +28,21 @@ TEST(SupportCount, ManifoldQueriesReportTheirEvaluations)
     EXPECT_GT(cost.support_calls, first);
 }
 
+namespace
+{
+
+// A rounded box (half-size 5 cm, ε 0.3) placed 0.1 mm into the ground.
+sm::BodyDef box_resting_on_ground()
+{
+    sm::BodyDef d = sm::default_body_def();
+    d.shape.radii = {0.05, 0.05, 0.05};
+    d.shape.epsilon1 = d.shape.epsilon2 = 0.3;
+    d.position = {0, 0.0499, 0};
+    return d;
+}
+
+} // namespace
+
 TEST(SupportCount, StepProfileCountsTouchingPairsPerSubstep)
 {
     // A rounded box resting on the ground in two substeps: one touching pair in each, and the
@@ -37,10 +52,7 @@ TEST(SupportCount, StepProfileCountsTouchingPairsPerSubstep)
     def.substep_count = 2;
     sm::World w(def);
     (void)sm::test::add_ground(w);
-    sm::BodyDef d = sm::default_body_def();
-    d.shape.radii = {0.05, 0.05, 0.05};
-    d.shape.epsilon1 = d.shape.epsilon2 = 0.3;
-    d.position = {0, 0.0499, 0};
+    sm::BodyDef d = box_resting_on_ground();
     (void)sm::create_body(w, d);
     sm::test::run_steps(w, 4); // fewer substeps than a pair needs to be steady (no reuse yet)
     EXPECT_EQ(w.profile().touching_pairs, 2u);
@@ -64,10 +76,7 @@ TEST(SupportCount, AReshapedBodyQueriesItsPairsAfresh)
     def.dt = 0.002;
     sm::World w(def);
     (void)sm::test::add_ground(w);
-    sm::BodyDef d = sm::default_body_def();
-    d.shape.radii = {0.05, 0.05, 0.05};
-    d.shape.epsilon1 = d.shape.epsilon2 = 0.3;
-    d.position = {0, 0.0499, 0};
+    sm::BodyDef d = box_resting_on_ground();
     d.allow_sleep = false;
     const sm::Entity box = sm::create_body(w, d);
     sm::test::run_steps(w, 100);
