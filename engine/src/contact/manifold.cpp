@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace supermodal
 {
@@ -200,6 +201,22 @@ void keep_slots(const BodyView& a, const PairManifold& old, std::vector<Candidat
     pts.swap(sorted);
 }
 
+// Appends the touching points with equal weights (and, with `speculative`, the others with weight 0 and
+// their gap as a negative depth), in order; returns how many.
+int append_points(std::span<const Candidate> pts, const Vec3& n, bool flip, bool speculative,
+                  std::vector<ContactPoint>& out)
+{
+    int touching = 0;
+    for (const Candidate& c : pts)
+        touching += c.depth > 0.0 ? 1 : 0;
+    for (const Candidate& c : pts)
+        if (c.depth > 0.0)
+            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching, 1.0});
+        else if (speculative)
+            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 0.0, 1.0});
+    return speculative ? static_cast<int>(pts.size()) : touching;
+}
+
 // Merges fresh candidates with the surviving old points, reduces to capacity, stores, and appends the
 // touching points with equal weights (and, with `speculative`, the kept points not touching, with
 // weight 0 and their gap as a negative depth).
@@ -211,18 +228,11 @@ int finish(const BodyView& a, const BodyView* b, std::vector<Candidate>& fresh, 
         add_unique(fresh, c, merge);
     reduce(fresh, n);
     io.count = static_cast<int>(fresh.size());
-    int touching = 0;
     for (size_t i = 0; i < fresh.size(); ++i) {
         io.points[i].local_a = to_body(a, fresh[i].pa);
         io.points[i].local_b = b != nullptr ? to_body(*b, fresh[i].pb) : Vec3{};
-        touching += fresh[i].depth > 0.0 ? 1 : 0;
     }
-    for (const Candidate& c : fresh)
-        if (c.depth > 0.0)
-            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 1.0 / touching, 1.0});
-        else if (speculative)
-            out.push_back({0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, 0.0, 1.0});
-    return speculative ? static_cast<int>(fresh.size()) : touching;
+    return append_points(fresh, n, flip, speculative, out);
 }
 
 // The manifold's points that still touch (or nearly): material points of both bodies, re-measured along
@@ -427,7 +437,6 @@ int remeasure(const BodyView& a, const BodyView* b, const Vec3& n, double plane_
               bool speculative, const PairManifold& io, std::vector<ContactPoint>& out)
 {
     std::array<Candidate, PairManifold::k_capacity> pts{};
-    int touching = 0;
     for (int i = 0; i < io.count; ++i) {
         const ManifoldPoint& m = io.points[static_cast<size_t>(i)];
         Candidate& c = pts[static_cast<size_t>(i)];
@@ -439,18 +448,9 @@ int remeasure(const BodyView& a, const BodyView* b, const Vec3& n, double plane_
             c.depth = plane_offset - dot(n, c.pa);
             c.pb = c.pa + c.depth * n;
         }
-        touching += c.depth > 0.0 ? 1 : 0;
     }
-    int appended = 0;
-    for (int i = 0; i < io.count; ++i) {
-        const Candidate& c = pts[static_cast<size_t>(i)];
-        if (!(c.depth > 0.0) && !speculative)
-            continue;
-        out.push_back(
-            {0.5 * (c.pa + c.pb), flip ? -n : n, c.depth, c.depth > 0.0 ? 1.0 / touching : 0.0, 1.0});
-        ++appended;
-    }
-    return appended;
+    return append_points(std::span<const Candidate>(pts.data(), static_cast<size_t>(io.count)), n, flip,
+                         speculative, out);
 }
 
 int query_manifold(const BodyView& a, const BodyView& b, PairManifold& io, std::vector<ContactPoint>& out,
