@@ -9,13 +9,15 @@
 // sphere; Bullet runs with deactivation off, then on. Both engines get the same gravity, pair friction,
 // restitution, mass, inertia and step (Bullet: fixed step dt, one internal step per step).
 //
-// Usage: peer_pile [N=1000] [substeps=1] [--csv FILE] [--set key=value]... (bench/peer/peer_scene.h)
+// Usage: peer_pile [N=1000] [substeps=1] [--seeds K] [--csv FILE] [--set key=value]...
+// (bench/peer/peer_scene.h)
 #include "peer/peer_scene.h"
 #ifdef SM_BENCH_BULLET
 #include "peer/bullet_world.h"
 #endif
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -36,6 +38,7 @@ struct Options {
     int substeps = 1;
     int steps = 720;       // whole run [-]
     int timed_steps = 240; // measured at the end [-]
+    int seeds = 1;         // piles from this many jitters [-]; the first is the one of pile_bench.cpp
     std::vector<std::string> shapes{"box", "sphere", "ellipsoid"};
     std::string engine = "all"; // all, supermodal or bullet
     std::string csv;
@@ -46,6 +49,7 @@ struct Row {
     std::string engine;
     Kind kind = Kind::Box;
     int substeps = 1;
+    int seed = 0;
     double ms = 0.0, cpu_ms = 0.0; // per step [ms]
     double overlap = 0.0;          // deepest after the last step [m]
     double ratio = 0.0;            // supermodal / this engine, CPU ms per step [-]; 0: not a peer row
@@ -59,8 +63,9 @@ BodySpec pile_body(Kind kind)
     return b;
 }
 
-// The same bodies, in the same order and from the same random numbers, as pile_bench.cpp.
-SceneSpec pile_scene(Kind kind, int n)
+// The same bodies, in the same order and from the same random numbers, as pile_bench.cpp (seed 0); each
+// other seed jitters and turns them anew.
+SceneSpec pile_scene(Kind kind, int n, int seed)
 {
     SceneSpec s;
     s.dt = 1.0 / 240.0;
@@ -70,6 +75,7 @@ SceneSpec pile_scene(Kind kind, int n)
     s.planes = {
         {{0, 1, 0}, 0.0}, {{1, 0, 0}, -half}, {{-1, 0, 0}, -half}, {{0, 0, 1}, -half}, {{0, 0, -1}, -half}};
     Lcg rng;
+    rng.state += static_cast<uint32_t>(seed);
     for (int i = 0; i < n; ++i) {
         const int layer = i / per_layer, cell = i % per_layer;
         BodySpec b = pile_body(kind);
@@ -106,14 +112,14 @@ void measure(std::span<const std::unique_ptr<PeerWorld>> worlds, std::span<Row> 
         rows[k].overlap = worlds[k]->max_penetration();
 }
 
-std::vector<Row> run_shape(Kind kind, const Options& o)
+std::vector<Row> run_shape(Kind kind, int seed, const Options& o)
 {
-    const SceneSpec scene = pile_scene(kind, o.n);
+    const SceneSpec scene = pile_scene(kind, o.n, seed);
     std::vector<std::unique_ptr<PeerWorld>> worlds;
     std::vector<Row> rows;
     auto add = [&](std::string engine, std::unique_ptr<PeerWorld> world, int substeps) {
         worlds.push_back(std::move(world));
-        rows.push_back({.engine = std::move(engine), .kind = kind, .substeps = substeps});
+        rows.push_back({.engine = std::move(engine), .kind = kind, .substeps = substeps, .seed = seed});
     };
     if (o.engine != "bullet")
         add("supermodal", make_supermodal_world(scene, o.supermodal), o.supermodal.substeps);
@@ -132,13 +138,49 @@ std::vector<Row> run_shape(Kind kind, const Options& o)
     return rows;
 }
 
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n == 0 ? 0.0 : n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Over the seeds, per engine and shape: the median ratio and the median and largest end-of-run overlap. One
+// pile's deepest point moves by tenths of a millimetre with any change of its trajectory; the seeds' spread
+// says how far one run can be trusted.
+void report_seeds(const std::vector<Row>& rows)
+{
+    std::printf("\nover the seeds:\n%-13s %-10s %5s %12s %16s %16s\n", "engine", "shape", "runs",
+                "sm/peer med", "overlap med[mm]", "overlap max[mm]");
+    std::vector<std::pair<std::string, Kind>> done;
+    for (const Row& first : rows) {
+        const std::pair<std::string, Kind> key{first.engine, first.kind};
+        if (std::find(done.begin(), done.end(), key) != done.end())
+            continue;
+        done.push_back(key);
+        std::vector<double> ratios, overlaps;
+        for (const Row& r : rows)
+            if (r.engine == first.engine && r.kind == first.kind) {
+                ratios.push_back(r.ratio);
+                overlaps.push_back(1e3 * r.overlap);
+            }
+        const std::string ratio =
+            first.engine == "supermodal" ? "-" : std::to_string(median(ratios)).substr(0, 4);
+        std::printf("%-13s %-10s %5zu %12s %16.3f %16.3f\n", first.engine.c_str(),
+                    kind_name(first.kind).data(), overlaps.size(), ratio.c_str(), median(overlaps),
+                    *std::max_element(overlaps.begin(), overlaps.end()));
+    }
+}
+
 void report(const std::vector<Row>& rows, const Options& o)
 {
-    std::printf("%-13s %-10s %6s %9s %9s %12s %10s\n", "engine", "shape", "substp", "ms/step", "cpu_ms",
-                "overlap[mm]", "sm/peer");
+    std::printf("%-13s %-10s %6s %4s %9s %9s %12s %10s\n", "engine", "shape", "substp", "seed", "ms/step",
+                "cpu_ms", "overlap[mm]", "sm/peer");
     for (const Row& r : rows)
-        std::printf("%-13s %-10s %6d %9.3f %9.3f %12.3f %10.2f\n", r.engine.c_str(), kind_name(r.kind).data(),
-                    r.substeps, r.ms, r.cpu_ms, 1e3 * r.overlap, r.ratio);
+        std::printf("%-13s %-10s %6d %4d %9.3f %9.3f %12.3f %10.2f\n", r.engine.c_str(),
+                    kind_name(r.kind).data(), r.substeps, r.seed, r.ms, r.cpu_ms, 1e3 * r.overlap, r.ratio);
+    if (o.seeds > 1)
+        report_seeds(rows);
     if (o.csv.empty())
         return;
     // Appends, so repeated runs (this VM's speed drifts) collect in one table; the header goes first only.
@@ -174,6 +216,8 @@ int main(int argc, char** argv)
     app.add_option("substeps", o.substeps, "supermodal substeps per step [-]")->check(CLI::Range(1, 1000));
     app.add_option("--steps", o.steps, "Steps of the whole run [-]")->check(CLI::PositiveNumber);
     app.add_option("--timed", o.timed_steps, "Steps measured at the end [-]")->check(CLI::PositiveNumber);
+    app.add_option("--seeds", o.seeds, "Piles from this many jitters, each run in turn [-]")
+        ->check(CLI::Range(1, 1000));
     app.add_option("--shape", o.shapes, "Shapes: box, sphere, ellipsoid")
         ->check(CLI::IsMember({"box", "sphere", "ellipsoid"}))
         ->delimiter(',');
@@ -190,11 +234,13 @@ int main(int argc, char** argv)
     if (const std::string error = apply_contact_solver(o.supermodal.contact, solver); !error.empty())
         return std::fprintf(stderr, "peer_pile: --solver: %s\n", error.c_str()), 2;
     std::vector<Row> rows;
-    for (const std::string& name : o.shapes) {
-        const Kind kind = name == "box" ? Kind::Box : name == "sphere" ? Kind::Sphere : Kind::Ellipsoid;
-        for (const Row& r : run_shape(kind, o))
-            rows.push_back(r);
-    }
+    for (int seed = 0; seed < o.seeds; ++seed)
+        for (const std::string& name : o.shapes) {
+            const Kind kind = name == "box" ? Kind::Box : name == "sphere" ? Kind::Sphere : Kind::Ellipsoid;
+            for (const Row& r : run_shape(kind, seed, o))
+                rows.push_back(r);
+            std::fprintf(stderr, "peer_pile: seed %d/%d %s done\n", seed + 1, o.seeds, name.c_str());
+        }
     std::printf("pile, N = %d, dt = 1/240 s, steps %d-%d, one thread, %s\n", o.n, o.steps - o.timed_steps + 1,
                 o.steps, machine_name().c_str());
     report(rows, o);

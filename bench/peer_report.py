@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Pile against Bullet (bench/peer_pile.cpp) CSV -> PNG (gnuplot) and a markdown table on stdout.
 
-Usage: peer_report.py PEER.csv        (writes PEER.png beside it)
+Usage: peer_report.py PEER.csv [SETTING]   (writes PEER.png beside it; SETTING names the solver settings
+       in the title, "one substep" when not given)
 Every run the CSV holds (peer_pile appends), in file order: left, supermodal's ms/step over Bullet's
 (the `bullet` rows: Bullet's bodies never sleep) per shape, with the goals as dashed lines (ellipsoids
 0.33x, rounded boxes 1.0x); right, the deepest overlap at the end of each run, both engines. Runs of one
@@ -43,7 +44,7 @@ def table(points):
         print(f"| {date} | {shape} | {ratio:.2f} | {ov_sm:.2f} / {ov_bt:.2f} |")
 
 
-def plot(path, points):
+def plot(path, points, setting):
     shapes = [s for s in COLOURS if any(p[1] == s for p in points)]
     # One x position per run: a run writes each shape once, so a shape seen again starts the next.
     run_of, dates, seen = [], [], set()
@@ -73,7 +74,7 @@ def plot(path, points):
     script = f"""
 set terminal pngcairo size 1200,500 font "Helvetica,10" noenhanced
 set output "{path[:-4]}.png"
-set multiplot layout 1,2 title "Pile of 1000 against Bullet 3.24, dt = 1/240 s, one substep, one thread (each dot one run)"
+set multiplot layout 1,2 title "Pile of 1000 against Bullet 3.24, dt = 1/240 s, {setting}, one thread (each dot one run)"
 set grid
 set offsets 0.5, 0.5, 0, 0
 set xtics ({tics}) rotate by 45 right font ",8"
@@ -93,10 +94,11 @@ unset multiplot
 
 def main():
     path = sys.argv[1]
+    setting = sys.argv[2] if len(sys.argv) > 2 else "one substep"
     points = runs(read(path))
     table(points)
     if shutil.which("gnuplot") and points:
-        plot(path, points)
+        plot(path, points, setting)
     elif not points:
         print("no supermodal/bullet pairs in the file", file=sys.stderr)
     else:
