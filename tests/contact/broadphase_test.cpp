@@ -138,3 +138,13 @@ TEST(Broadphase, DensePileMatchesBruteForce)
     EXPECT_EQ(pairs, brute_force(ps));
     EXPECT_GT(pairs.size(), 1000u);
 }
+
+TEST(Broadphase, PairKeyUnpacksToItsTwoIndices)
+{
+    // The key orders pairs by a's index, then b's; the largest indices must survive the round trip.
+    const sm::BodyPair pair{.a = {.index = 7, .generation = 3}, .b = {.index = 0xfffffffeu, .generation = 1}};
+    const auto [a, b] = sm::pair_key_indices(pair.key());
+    EXPECT_EQ(a, 7u);
+    EXPECT_EQ(b, 0xfffffffeu);
+    EXPECT_LT(pair.key(), (sm::BodyPair{.a = {.index = 8}, .b = {.index = 9}}.key()));
+}

@@ -9,6 +9,7 @@
 #include "supermodal/entity.h"
 #include "supermodal/geometry.h"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -33,6 +34,12 @@ struct BodyPair {
     [[nodiscard]] uint64_t key() const { return (uint64_t{a.index} << 32) | b.index; }
     friend constexpr bool operator==(const BodyPair&, const BodyPair&) = default;
 };
+
+/// The entity indices a pair key packs (BodyPair::key): a's, then b's.
+[[nodiscard]] constexpr std::array<uint32_t, 2> pair_key_indices(uint64_t key)
+{
+    return {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)};
+}
 
 /// Scratch kept between calls so a warmed-up broadphase does not allocate.
 struct BroadphaseScratch {

@@ -508,7 +508,7 @@ void update_contact_anchors(const StepContext& ctx, const Registry& reg, const P
 void requery_pairs_of(ContactWorld& io, Entity body)
 {
     for (PairManifold& m : io.manifolds)
-        if (static_cast<uint32_t>(m.key >> 32) == body.index || static_cast<uint32_t>(m.key) == body.index)
+        if (const auto [a, b] = pair_key_indices(m.key); a == body.index || b == body.index)
             m.steady = 0;
 }
 

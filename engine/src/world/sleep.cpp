@@ -42,7 +42,8 @@ uint8_t class_of(const std::vector<uint8_t>& classes, uint64_t index)
 // A pair to park: one end sleeps and no end is awake (the other sleeps too, or is fixed).
 bool sleeping_key(const std::vector<uint8_t>& classes, uint64_t key)
 {
-    const uint8_t a = class_of(classes, key >> 32), b = class_of(classes, key & 0xffffffffu);
+    const auto [ia, ib] = pair_key_indices(key);
+    const uint8_t a = class_of(classes, ia), b = class_of(classes, ib);
     return (a == k_asleep || b == k_asleep) && a != k_awake && b != k_awake && a != k_moving && b != k_moving;
 }
 
