@@ -164,10 +164,11 @@ void report_seeds(const std::vector<Row>& rows)
                 ratios.push_back(r.ratio);
                 overlaps.push_back(1e3 * r.overlap);
             }
-        const std::string ratio =
-            first.engine == "supermodal" ? "-" : std::to_string(median(ratios)).substr(0, 4);
+        char ratio[16] = "-";
+        if (first.engine != "supermodal")
+            std::snprintf(ratio, sizeof ratio, "%.2f", median(ratios));
         std::printf("%-13s %-10s %5zu %12s %16.3f %16.3f\n", first.engine.c_str(),
-                    kind_name(first.kind).data(), overlaps.size(), ratio.c_str(), median(overlaps),
+                    kind_name(first.kind).data(), overlaps.size(), ratio, median(overlaps),
                     *std::max_element(overlaps.begin(), overlaps.end()));
     }
 }

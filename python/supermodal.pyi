@@ -222,7 +222,7 @@ class World:
         contact_iterations: int = 10,
         solver_substeps: int = 0,
         soft_frequency_hz: float = 0.0,
-        soft_damping_ratio: float = 10.0,
+        soft_damping_ratio: float = 5.0,
         contact_path: Literal["auto", "sampling", "support_map"] = "auto",
         contact_stiffness: Literal["frequency", "material"] = "frequency",
         contact_frequency_hz: float = 0.0,

@@ -155,6 +155,10 @@ std::string apply_contact_setting(sm::ContactDef& def, std::string_view key_valu
         return parse_number(value, def.soft.iterations);
     if (key == "soft.substeps")
         return parse_number(value, def.soft.substeps);
+    if (key == "soft.damping_ratio")
+        return parse_number(value, def.soft.damping_ratio);
+    if (key == "soft.push_out_speed")
+        return parse_number(value, def.soft.push_out_speed);
     return "unknown contact setting '" + std::string(key) + "'";
 }
 

@@ -184,7 +184,7 @@ mirror WorldDef and ContactDef (defaults in brackets):
   solver_substeps [1], in [1, 64]: the soft solver's substeps per narrowphase (4 holds tall stacks
       at 1/60 s for one narrowphase per step).
   soft_frequency_hz [0] Hz, >= 0: the soft contact spring (0: min(1/(2 dt), 60 Hz)).
-  soft_damping_ratio [10], >= 0.
+  soft_damping_ratio [5], >= 0.
   contact_path ['auto']: 'auto', 'sampling' or 'support_map'.
   contact_stiffness ['frequency']: 'frequency' or 'material' (Hertz, from the bodies' Young's moduli).
   contact_frequency_hz [0] Hz, >= 0: penalty spring (0: the stability cap 1/(10 h)).
