@@ -50,7 +50,8 @@ enum class ContactSolver : uint8_t {
 struct SoftContactDef {
     double frequency_hz = 0.0;      ///< Contact spring frequency [Hz]; 0 = min(1/(2·h), 60 Hz). Higher sinks
                                     ///< less under load; the solve stays stable.
-    double damping_ratio = 5.0;     ///< [-]: heavily damped, so a spring pushes out without bouncing.
+    double damping_ratio = 5.0;     ///< [-]: heavily damped, so a spring pushes out without bouncing;
+                                    ///< twice it at a point on a modal body.
     double push_out_speed = 3.0;    ///< Fastest separation the spring may cause [m/s].
     double restitution_speed = 1.0; ///< Approach speed [m/s] below which a contact does not bounce.
     int iterations = 10; ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
