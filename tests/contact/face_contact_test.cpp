@@ -100,6 +100,43 @@ TEST(FaceContact, BoxRestingFlatOnABoxTouchesAtItsPatchCorners)
     }
 }
 
+TEST(FaceContact, BoxAcrossTwoMeetsOnAStripInTheMiddle)
+{
+    // A rounded ε = 0.3 box (half 0.1 m) across the gap beside another, its face 1 mm below the other's
+    // pole plane, 0.105 m off to the side: the upper does not reach under the lower's pole, and the
+    // patches round the poles never meet. The faces drop towards their edges and meet halfway across
+    // where their outlines overlap (x from −0.1 to −0.005: x = −0.0525), on a strip along z: every point
+    // lies there, on both true surfaces within 1e-12, touching, and the middle one is deeper than the
+    // surfaces' overlap 2 mm to either side of it (where they meet is where they overlap most).
+    const sm::Collider box = box_collider(0.1, 0.3);
+    const sm::BodyView lower = view(box, {-0.105, 0, 0}), upper = view(box, {0, 0.199, 0});
+    const sm::FaceContact fc = sm::face_contact(upper, lower, {0, 1, 0});
+    ASSERT_EQ(fc.kind, sm::FaceContact::Kind::Faces);
+    ASSERT_EQ(fc.count, 3);
+    double middle_depth = 0.0;
+    for (int i = 0; i < fc.count; ++i) {
+        const sm::FacePoint& p = fc.points[static_cast<size_t>(i)];
+        EXPECT_NEAR(p.on_a.x, -0.0525, 1e-12);
+        EXPECT_LT(off_surface(upper, p.on_a), 1e-12);
+        EXPECT_LT(off_surface(lower, p.on_b), 1e-12);
+        EXPECT_GT(p.depth, 0.0);
+        EXPECT_NEAR(std::abs(fc.normal.y), 1.0, 1e-12);
+        if (std::abs(p.on_a.z) < 1e-12)
+            middle_depth = p.depth;
+    }
+    EXPECT_GT(middle_depth, 0.5e-3); // the faces drop about 0.2 mm each there, from 1 mm
+    // The surfaces' overlap along y at x [m], z = 0, from each face's height.
+    auto overlap_at = [&](double x) {
+        sm::Vec3 top{x + 0.105, 0, 0}, bottom{x, 0, 0};
+        EXPECT_TRUE(sm::face_height(box.shape, 1, 1.0, top));
+        EXPECT_TRUE(sm::face_height(box.shape, 1, -1.0, bottom));
+        return top.y - (0.199 + bottom.y);
+    };
+    EXPECT_NEAR(overlap_at(-0.0525), middle_depth, 1e-12);
+    EXPECT_LT(overlap_at(-0.0545), middle_depth);
+    EXPECT_LT(overlap_at(-0.0505), middle_depth);
+}
+
 TEST(FaceContact, EveryPointLiesOnBothTrueSurfaces)
 {
     // Rounded boxes (ε 0.2 to 0.5) in random poses 1 mm or less into each other, face on face, edge on

@@ -16,8 +16,10 @@
 // clipped against the reference's side planes (Sutherland–Hodgman), and each clipped corner is moved
 // onto the true surfaces: along the incident body's axis onto it, then along the reference's onto that,
 // so every point is a material point of both bodies and its depth is their overlap along the normal.
-// The deepest point joins the corners (at most four of them are kept before the lifts). A face contact
-// needs two touching corners. Otherwise: an edge or corner of the incident body whose deepest point
+// The deepest point joins the corners (at most four of them are kept before the lifts). Parallel faces
+// side by side, the incident body not under the reference's pole (a box across two below it), meet on a
+// strip across the middle of where their outlines overlap: its middle and ends are the points. A face
+// contact needs two touching corners. Otherwise: an edge or corner of the incident body whose deepest point
 // lies over the reference's flat part gets that point and the ends of the edge's flat part (moved onto
 // the body along the normal); two edges crossing get one point on the axis across both; a pair apart
 // keeps its separating direction for the next query; the rest goes to the search of penetration.h.

@@ -20,9 +20,10 @@ constexpr double k_merge_rel = 0.1;
 // Old points lifted off by more than this (fraction of the smallest radius) are dropped.
 constexpr double k_separate_rel = 0.02;
 // A speculative caller's face patches reach where the surfaces have dropped by this (fraction of the
-// smaller smallest radius) [-]: a face resting on the tiny overlap of a stiff soft contact still stands
-// on its corners (one point at its pole let a resting ε = 0.5 body rock and gain energy at a 0.2 ms
-// step, measured). Its points within k_separate_rel of touching are rows, also of bodies not touching
+// smaller smallest radius) [-] while apart, and once touching at most nine tenths of the overlap
+// (face_contact.cpp, least_patch_drop): a face resting on the tiny overlap of a stiff soft contact still
+// stands on its corners (one point at its pole let a resting ε = 0.5 body rock and gain energy at a
+// 0.2 ms step, measured). Its points within k_separate_rel of touching are rows, also of bodies not touching
 // yet: boxes of a column placed touching fell freely until each pair overlapped, a cascade that took
 // 14 steps to reach the top at 1/60 s (measured).
 constexpr double k_face_patch_rel = 1e-3;
