@@ -220,6 +220,7 @@ class World:
         contact_enabled: bool = True,
         contact_solver: Solver = "soft",
         contact_iterations: int = 10,
+        relax_iterations: int = 0,
         solver_substeps: int = 0,
         soft_frequency_hz: float = 0.0,
         soft_damping_ratio: float = 5.0,

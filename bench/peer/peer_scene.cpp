@@ -153,6 +153,8 @@ std::string apply_contact_setting(sm::ContactDef& def, std::string_view key_valu
         return parse_number(value, def.soft.frequency_hz);
     if (key == "soft.iterations")
         return parse_number(value, def.soft.iterations);
+    if (key == "soft.relax_iterations")
+        return parse_number(value, def.soft.relax_iterations);
     if (key == "soft.substeps")
         return parse_number(value, def.soft.substeps);
     if (key == "soft.damping_ratio")

@@ -25,6 +25,7 @@ void read_world_def(Kwargs& kw, sm::WorldDef& def)
     c.solver = kw.choice("contact_solver", c.solver,
                          {{"penalty", sm::ContactSolver::Penalty}, {"soft", sm::ContactSolver::Soft}});
     c.soft.iterations = kw.integer("contact_iterations", c.soft.iterations);
+    c.soft.relax_iterations = kw.integer("relax_iterations", c.soft.relax_iterations);
     c.soft.substeps = kw.integer("solver_substeps", c.soft.substeps);
     c.soft.frequency_hz = kw.number("soft_frequency_hz", c.soft.frequency_hz);
     c.soft.damping_ratio = kw.number("soft_damping_ratio", c.soft.damping_ratio);
@@ -56,6 +57,7 @@ void check_contact(const sm::ContactDef& c)
 // Engine field names (Error::where) → the keyword that sets them.
 constexpr std::initializer_list<std::pair<const char*, const char*>> k_world_fields = {
     {"contact.soft.iterations", "contact_iterations"},
+    {"contact.soft.relax_iterations", "relax_iterations"},
     {"contact.soft.substeps", "solver_substeps"},
     {"contact.soft.frequency_hz", "soft_frequency_hz"},
     {"contact.soft.damping_ratio", "soft_damping_ratio"},
@@ -98,6 +100,7 @@ py::dict settings(const WorldBox& box)
     out["contact_enabled"] = d.contact.enabled;
     out["contact_solver"] = solver_name(d.contact.solver);
     out["contact_iterations"] = d.contact.soft.iterations;
+    out["relax_iterations"] = d.contact.soft.relax_iterations;
     out["solver_substeps"] = d.contact.soft.substeps;
     out["soft_frequency_hz"] = d.contact.soft.frequency_hz;
     out["soft_damping_ratio"] = d.contact.soft.damping_ratio;
@@ -181,8 +184,10 @@ mirror WorldDef and ContactDef (defaults in brackets):
   contact_solver ['soft']: 'soft' (implicit, stable at any step) or 'penalty' (the paper's explicit
       springs, want small steps).
   contact_iterations [10], in [1, 100]: the soft solver's passes per substep.
-  solver_substeps [1], in [1, 64]: the soft solver's substeps per narrowphase (4 holds tall stacks
-      at 1/60 s for one narrowphase per step).
+  relax_iterations [0], in [0, 100]: the soft solver's relax passes per substep (0: as many as
+      contact_iterations); fewer are cheaper (docs/contact.md).
+  solver_substeps [0], in [0, 64]: the soft solver's substeps per narrowphase (0: as many as keep each
+      at most 1/240 s, so 4 at a 1/60 s step, which holds tall stacks).
   soft_frequency_hz [0] Hz, >= 0: the soft contact spring (0: min(1/(2 dt), 60 Hz)).
   soft_damping_ratio [5], >= 0.
   contact_path ['auto']: 'auto', 'sampling' or 'support_map'.

@@ -74,6 +74,7 @@ def test_bad_settings_change_nothing(world):
     unchanged(world, lambda: world.configure(gravity=(0, math.nan, 0)), sm.ArgumentError, "gravity[1]")
     unchanged(world, lambda: world.configure(contact_solver="magic"), sm.ArgumentError, "contact_solver")
     unchanged(world, lambda: world.configure(contact_iterations=0), sm.ArgumentError, "contact_iterations")
+    unchanged(world, lambda: world.configure(relax_iterations=-1), sm.ArgumentError, "relax_iterations")
     unchanged(world, lambda: world.configure(solver_substeps=65), sm.ArgumentError, "solver_substeps")
     # All or nothing: a good value next to a bad one is not applied either.
     unchanged(world, lambda: world.configure(substep_count=4, constraint_iterations=1000), sm.ArgumentError,

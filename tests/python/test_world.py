@@ -21,6 +21,7 @@ def test_defaults_mirror_the_defs():
     assert s["gravity"] == (0.0, -9.81, 0.0)
     assert s["contact_solver"] == "soft" and s["contact_iterations"] == 10
     assert s["solver_substeps"] == 0  # automatic: each solver substep at most 1/240 s
+    assert s["relax_iterations"] == 0  # as many as contact_iterations
     b = w.create_body()
     assert b.position == (0.0, 0.0, 0.0) and b.orientation == (1.0, 0.0, 0.0, 0.0)
     # A water-density sphere of radius 0.5 m: m = 1000 * 4/3 pi 0.5^3.

@@ -249,7 +249,7 @@ TEST(SceneLoader, ReadsTheContactSolverAndItsSettings)
 {
     const auto scene = sm::parse_scene(R"({"settings": {"contact": {"solver": "soft", "soft": {
         "frequency": 45, "damping_ratio": 2, "push_out_speed": 0.5, "restitution_speed": 0.2,
-        "iterations": 12, "substeps": 4}}}})");
+        "iterations": 12, "relax_iterations": 3, "substeps": 4}}}})");
     ASSERT_TRUE(scene) << scene.error().message();
     const sm::ContactDef& c = scene->world.contact;
     EXPECT_EQ(c.solver, sm::ContactSolver::Soft);
@@ -258,6 +258,7 @@ TEST(SceneLoader, ReadsTheContactSolverAndItsSettings)
     EXPECT_EQ(c.soft.push_out_speed, 0.5);
     EXPECT_EQ(c.soft.restitution_speed, 0.2);
     EXPECT_EQ(c.soft.iterations, 12);
+    EXPECT_EQ(c.soft.relax_iterations, 3);
     EXPECT_EQ(c.soft.substeps, 4);
 }
 
@@ -269,6 +270,10 @@ TEST(SceneLoaderErrors, ContactSolverSettingsNameTheirPointer)
                          "/settings/contact/soft/push_out_speed", "expected a number > 0, found 0"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"iterations": 0}}}})",
                          "/settings/contact/soft/iterations", "found 0"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"relax_iterations": -1}}}})",
+                         "/settings/contact/soft/relax_iterations", "found -1"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"relax_iterations": 101}}}})",
+                         "/settings/contact/soft/relax_iterations", "found 101"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": 65}}}})",
                          "/settings/contact/soft/substeps", "found 65"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": -1}}}})",

@@ -140,6 +140,15 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
     d.num(x.sleep.angular_speed, y.sleep.angular_speed, "sleep.angular_speed");
     d.num(x.sleep.time, y.sleep.time, "sleep.time");
     d.check(x.contact.enabled == y.contact.enabled, "contact.enabled");
+    d.check(x.contact.solver == y.contact.solver, "contact.solver");
+    const sm::SoftContactDef &xs = x.contact.soft, &ys = y.contact.soft;
+    d.num(xs.frequency_hz, ys.frequency_hz, "contact.soft.frequency_hz");
+    d.num(xs.damping_ratio, ys.damping_ratio, "contact.soft.damping_ratio");
+    d.num(xs.push_out_speed, ys.push_out_speed, "contact.soft.push_out_speed");
+    d.num(xs.restitution_speed, ys.restitution_speed, "contact.soft.restitution_speed");
+    d.check(xs.iterations == ys.iterations, "contact.soft.iterations");
+    d.check(xs.relax_iterations == ys.relax_iterations, "contact.soft.relax_iterations");
+    d.check(xs.substeps == ys.substeps, "contact.soft.substeps");
     d.check(x.contact.path == y.contact.path, "contact.path");
     d.num(x.contact.frequency_hz, y.contact.frequency_hz, "contact.frequency_hz");
     d.num(x.contact.damping_ratio, y.contact.damping_ratio, "contact.damping_ratio");
@@ -232,7 +241,7 @@ std::string every_field_scene()
                 "max_steps_per_advance": 5, "constraint_iterations": 7,
                 "contact": { "solver": "soft", "soft": { "frequency": 47.5, "damping_ratio": 3.25,
                              "push_out_speed": 1.5, "restitution_speed": 0.75, "iterations": 9,
-                                       "substeps": 3 },
+                                       "relax_iterations": 4, "substeps": 3 },
                              "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
                              "max_samples_per_body": 700, "deformed_inside_test": true },
                 "threads": 2,

@@ -54,14 +54,18 @@ struct SoftContactDef {
                                     ///< twice it at a point on a modal body.
     double push_out_speed = 3.0;    ///< Fastest separation the spring may cause [m/s].
     double restitution_speed = 1.0; ///< Approach speed [m/s] below which a contact does not bounce.
-    int iterations = 10; ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
-                         ///< joints join them (max with WorldDef::constraint_iterations), and as many
-                         ///< relax passes follow the position update. More holds taller stacks.
-    int substeps = 0;    ///< Solver substeps per narrowphase [-], in [0, 64]: the contact points found once
-                         ///< are solved this many times over shorter substeps, their gaps carried by the
-                         ///< bodies' motion (Box2D v3's soft step). Cheaper than WorldDef::substep_count,
-                         ///< which runs the narrowphase every substep. 0 = as many as keep a solver
-                         ///< substep at or under 1/240 s (4 at a 1/60 s step, 1 at 1/240 s and below).
+    int iterations = 10;      ///< Gauss–Seidel passes per substep over the contacts [-], in [1, 100]: the
+                              ///< joints join them (max with WorldDef::constraint_iterations), and as many
+                              ///< relax passes follow the position update. More holds taller stacks.
+    int relax_iterations = 0; ///< Relax passes per substep [-], in [0, 100]; 0 = as many as `iterations`.
+                              ///< They take the push-out's speed back out of the velocities; fewer are
+                              ///< cheaper and left a loose pile shallower, while a tall stack's first
+                              ///< steps and very unequal masses settle slower (docs/contact.md).
+    int substeps = 0; ///< Solver substeps per narrowphase [-], in [0, 64]: the contact points found once
+                      ///< are solved this many times over shorter substeps, their gaps carried by the
+                      ///< bodies' motion (Box2D v3's soft step). Cheaper than WorldDef::substep_count,
+                      ///< which runs the narrowphase every substep. 0 = as many as keep a solver
+                      ///< substep at or under 1/240 s (4 at a 1/60 s step, 1 at 1/240 s and below).
 };
 
 /// Solver substeps at or under this length [s] when SoftContactDef::substeps is 0: a 20-box column

@@ -46,7 +46,8 @@ const std::vector<std::string_view> k_contact_stiffness = {"frequency", "materia
 const std::vector<std::string_view> k_contact_solvers = {"soft", "penalty"};
 static_assert(static_cast<int>(ContactSolver::Penalty) == 1);
 const std::vector<std::string_view> k_soft_keys = {"frequency",         "damping_ratio", "push_out_speed",
-                                                   "restitution_speed", "iterations",    "substeps"};
+                                                   "restitution_speed", "iterations",    "relax_iterations",
+                                                   "substeps"};
 // In ContactPath order.
 const std::vector<std::string_view> k_contact_paths = {"auto", "sampling", "support_map"};
 static_assert(static_cast<int>(ContactPath::Sampling) == 1 && static_cast<int>(ContactPath::SupportMap) == 2);
@@ -87,6 +88,7 @@ void read_soft_contact(Reader& r, const Json& soft, const std::string& where, So
     r.field_number(soft, where, "push_out_speed", scene_io::above(0.0), out.push_out_speed);
     r.field_number(soft, where, "restitution_speed", scene_io::at_least(0.0), out.restitution_speed);
     r.field_int(soft, where, "iterations", scene_io::closed(1.0, 100.0), out.iterations);
+    r.field_int(soft, where, "relax_iterations", scene_io::closed(0.0, 100.0), out.relax_iterations);
     r.field_int(soft, where, "substeps", scene_io::closed(0.0, 64.0), out.substeps);
 }
 

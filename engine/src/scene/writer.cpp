@@ -56,6 +56,7 @@ Json settings_json(const Scene& scene)
                       {"push_out_speed", soft.push_out_speed},
                       {"restitution_speed", soft.restitution_speed},
                       {"iterations", soft.iterations},
+                      {"relax_iterations", soft.relax_iterations},
                       {"substeps", soft.substeps}}},
                     {"path", k_contact_paths[static_cast<size_t>(w.contact.path)]},
                     {"stiffness", k_contact_stiffness[static_cast<size_t>(w.contact.stiffness)]},

@@ -41,6 +41,9 @@ Status validate_soft(const SoftContactDef& soft)
         return Error{"", "contact.soft.restitution_speed", "expected a finite speed >= 0 m/s"};
     if (soft.iterations < 1 || soft.iterations > 100)
         return Error{"", "contact.soft.iterations", "expected an integer in [1, 100]"};
+    if (soft.relax_iterations < 0 || soft.relax_iterations > 100)
+        return Error{"", "contact.soft.relax_iterations",
+                     "expected an integer in [0, 100] (0: as iterations)"};
     if (soft.substeps < 0 || soft.substeps > 64)
         return Error{"", "contact.soft.substeps", "expected an integer in [0, 64] (0: automatic)"};
     return {};
@@ -227,7 +230,9 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         advance_soft_separations(contact.soft);
         // The islands of the solve above: the relax and the bounce touch the same bodies.
         const ExtraRows relax = soft_contact_rows(contact.soft, false);
-        solve_extra_rows(parallel, scratch.constraints, relax.count, def.contact.soft.iterations, relax.solve,
+        const SoftContactDef& soft = def.contact.soft;
+        solve_extra_rows(parallel, scratch.constraints, relax.count,
+                         soft.relax_iterations > 0 ? soft.relax_iterations : soft.iterations, relax.solve,
                          relax.ctx);
         if (last)
             solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair,
