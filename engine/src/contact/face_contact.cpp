@@ -204,7 +204,7 @@ struct Reference {
 // `overlap` [m] under the pole: its setting `least` while they are apart, and once they touch at most
 // nine tenths of the overlap, so the corners touch too. Corners above the other surface are rows with
 // free play: a rounded box resting on a 35 µm overlap with corners set 100 µm up stood on its pole
-// alone and rocked from one side of it to the other every step (2 cm/s at 1/240 s, measured).
+// alone and rocked from one side of it to the other every step (3 mm/s at 1/240 s, measured).
 double least_patch_drop(double least, double overlap)
 {
     return overlap > 0.0 ? std::min(least, 0.9 * overlap) : least;
@@ -254,6 +254,38 @@ Span patch_span(const Frame& f, const Face& face, const PatchSize& size, const V
     return {centre - half, centre + half};
 }
 
+// Where two parallel faces' outlines overlap, along the reference's patch axes: the axes, the spans,
+// and the overlap's middle in the incident pole's plane; false when they do not overlap.
+struct SideBySide {
+    Face inc_face;
+    Vec3 axes[2];
+    Span outline[2];
+    Vec3 middle{};
+};
+
+bool outlines_overlap(const Reference& r, SideBySide& out)
+{
+    out.inc_face = face_towards(*r.inc, -1.0 * r.face.normal);
+    if (!(dot(out.inc_face.normal, r.face.normal) < -k_offset_parallel))
+        return false;
+    PatchSize ref_outline, inc_outline;
+    for (int i = 0; i < 2; ++i) {
+        ref_outline.half[i] = r.ref->shape().radii[patch_axis(r.face.axis, i)];
+        inc_outline.half[i] = r.inc->shape().radii[patch_axis(out.inc_face.axis, i)];
+    }
+    out.middle = dot(r.face.normal, out.inc_face.pole) * r.face.normal;
+    for (int i = 0; i < 2; ++i) {
+        out.axes[i] = r.ref->r.col(patch_axis(r.face.axis, i));
+        const Span a = patch_span(*r.ref, r.face, ref_outline, out.axes[i]);
+        const Span b = patch_span(*r.inc, out.inc_face, inc_outline, out.axes[i]);
+        out.outline[i] = {std::max(a.lo, b.lo), std::min(a.hi, b.hi)};
+        if (!(out.outline[i].hi > out.outline[i].lo))
+            return false;
+        out.middle = out.middle + out.outline[i].middle() * out.axes[i];
+    }
+    return true;
+}
+
 // Parallel faces side by side, the incident body not under the reference's pole (a box resting across
 // two below it). Along each of the reference's patch axes the contact spans where both faces' flat
 // parts overlap (a sharp box's whole overlap); where they do not (a rounded box's drops towards its
@@ -261,55 +293,34 @@ Span patch_span(const Frame& f, const Face& face, const PatchSize& size, const V
 // and the corners or ends of the span that touch (or lie within the speculative gap). Returns how many.
 int offset_points(const Reference& r, FaceContact& fc)
 {
-    const Face inc_face = face_towards(*r.inc, -1.0 * r.face.normal);
-    if (!(dot(inc_face.normal, r.face.normal) < -k_offset_parallel))
-        return 0;
-    const ShapeDef& ref_shape = r.ref->shape();
-    const ShapeDef& inc_shape = r.inc->shape();
-    PatchSize ref_outline, inc_outline;
-    for (int i = 0; i < 2; ++i) {
-        ref_outline.half[i] = ref_shape.radii[patch_axis(r.face.axis, i)];
-        inc_outline.half[i] = inc_shape.radii[patch_axis(inc_face.axis, i)];
-    }
-    Vec3 axes[2];
-    Span outline[2];
-    Vec3 middle = dot(r.face.normal, inc_face.pole) * r.face.normal; // in the incident pole's plane
-    for (int i = 0; i < 2; ++i) {
-        axes[i] = r.ref->r.col(patch_axis(r.face.axis, i));
-        const Span a = patch_span(*r.ref, r.face, ref_outline, axes[i]);
-        const Span b = patch_span(*r.inc, inc_face, inc_outline, axes[i]);
-        outline[i] = {std::max(a.lo, b.lo), std::min(a.hi, b.hi)};
-        if (!(outline[i].hi > outline[i].lo))
-            return 0;
-        middle = middle + outline[i].middle() * axes[i];
-    }
+    SideBySide sb;
     const int before = fc.count;
-    if (!strip_point(r, inc_face, middle, -r.gap, fc))
+    if (!outlines_overlap(r, sb) || !strip_point(r, sb.inc_face, sb.middle, -r.gap, fc))
         return 0;
     const double depth = fc.points[static_cast<size_t>(before)].depth;
     const double drop =
         0.5 * std::max(2.0 * k_face_patch_drop * depth, least_patch_drop(2.0 * r.patch_drop, depth));
-    const PatchSize ref_flat = face_patch(ref_shape, r.face.axis, drop);
-    const PatchSize inc_flat = face_patch(inc_shape, inc_face.axis, drop);
+    const PatchSize ref_flat = face_patch(r.ref->shape(), r.face.axis, drop);
+    const PatchSize inc_flat = face_patch(r.inc->shape(), sb.inc_face.axis, drop);
     Span flat[2];
+    bool strip[2];
     for (int i = 0; i < 2; ++i) {
-        const Span a = patch_span(*r.ref, r.face, ref_flat, axes[i]);
-        const Span b = patch_span(*r.inc, inc_face, inc_flat, axes[i]);
-        flat[i] = {std::max({a.lo, b.lo, outline[i].lo}), std::min({a.hi, b.hi, outline[i].hi})};
-        if (!(flat[i].hi > flat[i].lo)) // the strip
-            flat[i].lo = flat[i].hi = outline[i].middle();
+        const Span a = patch_span(*r.ref, r.face, ref_flat, sb.axes[i]);
+        const Span b = patch_span(*r.inc, sb.inc_face, inc_flat, sb.axes[i]);
+        flat[i] = {std::max({a.lo, b.lo, sb.outline[i].lo}), std::min({a.hi, b.hi, sb.outline[i].hi})};
+        strip[i] = !(flat[i].hi > flat[i].lo);
+        if (strip[i])
+            flat[i].lo = flat[i].hi = sb.outline[i].middle();
     }
-    const double keep = std::min(depth, 0.0) - 3.0 * r.patch_drop;
     // The span's corners; along a strip its two ends (its middle is in already).
-    const bool strip[2] = {!(flat[0].hi > flat[0].lo), !(flat[1].hi > flat[1].lo)};
-    if (strip[0] && strip[1])
-        return fc.count - before;
-    const Vec3 plane = middle - dot(axes[0], middle) * axes[0] - dot(axes[1], middle) * axes[1];
-    for (int c = 0; c < 4; ++c) {
+    const double keep = std::min(depth, 0.0) - 3.0 * r.patch_drop;
+    const Vec3 plane =
+        sb.middle - dot(sb.axes[0], sb.middle) * sb.axes[0] - dot(sb.axes[1], sb.middle) * sb.axes[1];
+    for (int c = 0; c < 4 && !(strip[0] && strip[1]); ++c) {
         if ((strip[0] && (c & 1) != 0) || (strip[1] && (c & 2) != 0))
             continue;
         const double u = (c & 1) != 0 ? flat[0].hi : flat[0].lo, v = (c & 2) != 0 ? flat[1].hi : flat[1].lo;
-        (void)strip_point(r, inc_face, plane + u * axes[0] + v * axes[1], keep, fc);
+        (void)strip_point(r, sb.inc_face, plane + u * sb.axes[0] + v * sb.axes[1], keep, fc);
     }
     return fc.count - before;
 }
