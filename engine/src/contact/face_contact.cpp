@@ -255,7 +255,8 @@ Span patch_span(const Frame& f, const Face& face, const PatchSize& size, const V
 }
 
 // Where two parallel faces' outlines overlap, along the reference's patch axes: the axes, the spans,
-// and the overlap's middle in the incident pole's plane; false when they do not overlap.
+// and the overlap's middle in the incident pole's plane; false when they do not overlap (or are not
+// parallel).
 struct SideBySide {
     Face inc_face;
     Vec3 axes[2];
@@ -263,9 +264,9 @@ struct SideBySide {
     Vec3 middle{};
 };
 
-bool outlines_overlap(const Reference& r, SideBySide& out)
+bool outlines_overlap(const Reference& r, const Face& inc_face, SideBySide& out)
 {
-    out.inc_face = face_towards(*r.inc, -1.0 * r.face.normal);
+    out.inc_face = inc_face;
     if (!(dot(out.inc_face.normal, r.face.normal) < -k_offset_parallel))
         return false;
     PatchSize ref_outline, inc_outline;
@@ -291,11 +292,11 @@ bool outlines_overlap(const Reference& r, SideBySide& out)
 // parts overlap (a sharp box's whole overlap); where they do not (a rounded box's drops towards its
 // edges meet), it narrows to the middle of where the outlines overlap, a strip. The points: that middle,
 // and the corners or ends of the span that touch (or lie within the speculative gap). Returns how many.
-int offset_points(const Reference& r, FaceContact& fc)
+int offset_points(const Reference& r, const Face& inc_face, FaceContact& fc)
 {
     SideBySide sb;
     const int before = fc.count;
-    if (!outlines_overlap(r, sb) || !strip_point(r, sb.inc_face, sb.middle, -r.gap, fc))
+    if (!outlines_overlap(r, inc_face, sb) || !strip_point(r, sb.inc_face, sb.middle, -r.gap, fc))
         return 0;
     const double depth = fc.points[static_cast<size_t>(before)].depth;
     const double drop =
@@ -338,7 +339,7 @@ int clipped_points(const Reference& r, FaceContact& fc)
     Vec3 under;
     const bool reaches = lift(*r.inc, inc_face, r.face.pole, under);
     if (!reaches) {
-        if (offset_points(r, fc) >= 2)
+        if (offset_points(r, inc_face, fc) >= 2)
             return fc.count;
         fc.count = 0;
     }
