@@ -32,6 +32,17 @@ std::string check_writable(const std::string& path)
 
 std::string write_file_atomically(const std::string& path, const std::string& text)
 {
+    // A device or pipe (/dev/null, /dev/stdout) takes the text as it is: renaming over it would replace
+    // the device with a file.
+    std::error_code status_ec;
+    const auto status = std::filesystem::status(path, status_ec);
+    if (!status_ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+        !std::filesystem::is_directory(status)) {
+        std::ofstream out(path, std::ios::binary);
+        out << text;
+        out.flush();
+        return out ? std::string{} : path + ": write failed";
+    }
     const std::string tmp = path + ".tmp." + std::to_string(::getpid());
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

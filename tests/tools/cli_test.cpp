@@ -59,6 +59,15 @@ TEST(Cli, ProjectileSceneMatchesTheDiscreteClosedForm)
     EXPECT_GT(s["ms_per_step"]["median"].get<double>(), 0.0);
 }
 
+TEST(Cli, ASummaryToADeviceLeavesTheDeviceInPlace)
+{
+    // The summary is written through a temporary file renamed into place, except to a device or pipe:
+    // renaming over /dev/null once made it a regular file for every later user of the machine.
+    const Outcome o = run_cli("run " + scene("projectile.json") + " --steps 3 --json /dev/null");
+    ASSERT_EQ(o.status, 0) << o.output;
+    EXPECT_TRUE(std::filesystem::is_character_file("/dev/null"));
+}
+
 TEST(Cli, FreeSpinConservesEnergyOverTenSeconds)
 {
     // Implicit midpoint keeps rotational kinetic energy to ~1e-12 relative; docs/dynamics.md states 1e-6.
