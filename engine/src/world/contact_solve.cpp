@@ -149,13 +149,9 @@ struct AnySides {
 // step through them). Whether a body was frozen since its sides were made is asked once per pair: a
 // body freezes only between the solver's phases (freeze_non_finite), never inside one pass.
 struct RigidSides {
-    bool free_a = false, free_b = false; // dynamic and not frozen since the sides were made
+    bool free_a = false, free_b = false; // dynamic and not frozen (SoftPair::free_a)
 
-    explicit RigidSides(const SoftPoint& first)
-        : free_a(first.a.v != nullptr && !(first.a.m != nullptr && first.a.m->inv_mass == 0.0)),
-          free_b(first.b.v != nullptr && !(first.b.m != nullptr && first.b.m->inv_mass == 0.0))
-    {
-    }
+    explicit RigidSides(const SoftPair& sp) : free_a(sp.free_a), free_b(sp.free_b) {}
     // The normal row through its precomputed arms (SoftPoint::arm_a…): three products per side instead
     // of a cross product and an inertia product (the normal rows were a third of the passes' time).
     [[nodiscard]] static double row_rate(const SoftPoint& p, const Vec3& d, const Vec3& arm_a,
@@ -212,6 +208,21 @@ struct RigidSides {
             p.b.v->angular += p.b.inv_inertia * on_b;
     }
 };
+
+// Whether the side's body can take an impulse: dynamic, and not frozen since the side was made.
+bool side_free(const Side& s)
+{
+    return s.v != nullptr && !(s.m != nullptr && s.m->inv_mass == 0.0);
+}
+
+void note_pair_freedom(SoftPair& sp, const SoftContacts& rows)
+{
+    if (sp.count == 0)
+        return;
+    const SoftPoint& first = rows.points[sp.first];
+    sp.free_a = side_free(first.a);
+    sp.free_b = side_free(first.b);
+}
 
 // Whether none of the pair's points has a modal side.
 bool rigid_rows(const SoftPair& sp, const SoftContacts& rows)
@@ -413,6 +424,7 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
         sp.node_b = takes_impulse(first.b) ? pair.b.index : k_no_node;
     }
     sp.rigid = sp.count > 0 && rigid_rows(sp, rows);
+    note_pair_freedom(sp, rows);
 }
 
 // The pair's springs and warm start: its last normal load shared by the points' weights, its friction
@@ -555,7 +567,7 @@ void solve_pair_rows(SoftPair& sp, SoftContacts& rows, bool use_bias, const Side
 void solve_pair(SoftPair& sp, SoftContacts& rows, bool use_bias)
 {
     if (sp.rigid)
-        solve_pair_rows(sp, rows, use_bias, RigidSides(rows.points[sp.first]));
+        solve_pair_rows(sp, rows, use_bias, RigidSides(sp));
     else
         solve_pair_rows(sp, rows, use_bias, AnySides{});
 }
@@ -673,6 +685,7 @@ void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& 
     for (SoftPair& sp : rows.pairs) {
         const BodyPair& pair = io.pairs[sp.pair];
         sp.sliding = false;
+        note_pair_freedom(sp, rows);
         for (uint32_t i = 0; i < sp.count; ++i) {
             SoftPoint& p = rows.points[sp.first + i];
             if (p.a.modal.active() || p.b.modal.active())
@@ -685,6 +698,12 @@ void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& 
             push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
         }
     }
+}
+
+void note_frozen_bodies(SoftContacts& io)
+{
+    for (SoftPair& sp : io.pairs)
+        note_pair_freedom(sp, io);
 }
 
 ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias)

@@ -60,6 +60,8 @@ struct SoftPair {
     Vec3 roll_impulse{};    ///< Accumulated angular impulse on a [N·m·s].
     bool backwards = false; ///< Take the normal rows last to first (flips after each pass).
     bool rigid = false;     ///< It has points and none has a modal side (the rows' direct path).
+    bool free_a = false;    ///< a is dynamic and not frozen (the direct path's check, kept here so a
+    bool free_b = false;    ///< pass does not read the body models); the same for b.
 };
 
 /// The soft solver's rows of one substep (scratch of ContactWorld).
@@ -79,6 +81,8 @@ struct SoftContacts {
 /// Rows from this substep's points, warm started (their impulses already applied to the bodies).
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
                            ContactWorld& io);
+/// Which bodies of the rows are still free to move, asked again after a body froze (freeze_non_finite).
+void note_frozen_bodies(SoftContacts& io);
 /// A solver substep on the last substep's rows (no narrowphase between): their gaps as the bodies moved
 /// them, their impulses applied again as the warm start; a modal side is made anew for this substep.
 void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io);

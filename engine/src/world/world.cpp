@@ -212,6 +212,7 @@ void World::Impl::step()
 // end, which bounces the rows and brings the surfaces up to date.
 template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run& run, bool reuse, bool last)
 {
+    const uint64_t frozen = warnings.non_finite_bodies;
     run(Stage::PenaltyForces, [&] {
         if (reuse)
             refresh_soft_contacts(ctx, reg, contact);
@@ -228,6 +229,8 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
     });
     run(Stage::PenaltyForces, [&] {
         advance_soft_separations(contact.soft);
+        if (warnings.non_finite_bodies != frozen)
+            note_frozen_bodies(contact.soft);
         // The islands of the solve above: the relax and the bounce touch the same bodies.
         const ExtraRows relax = soft_contact_rows(contact.soft, false);
         const SoftContactDef& soft = def.contact.soft;
