@@ -22,6 +22,7 @@ def test_defaults_mirror_the_defs():
     assert s["contact_solver"] == "soft" and s["contact_iterations"] == 10
     assert s["solver_substeps"] == 0  # automatic: each solver substep at most 1/240 s
     assert s["relax_iterations"] == 0  # as many as contact_iterations
+    assert s["split_islands"] is False
     b = w.create_body()
     assert b.position == (0.0, 0.0, 0.0) and b.orientation == (1.0, 0.0, 0.0, 0.0)
     # A water-density sphere of radius 0.5 m: m = 1000 * 4/3 pi 0.5^3.
@@ -70,8 +71,8 @@ def test_settings_change_between_steps():
         4, "penalty", 20, 8)
     assert s["gravity"] == (0.0, -1.62, 0.0)
     assert s["deformed_inside_test"] is False
-    w.configure(deformed_inside_test=True)
-    assert w.settings()["deformed_inside_test"] is True
+    w.configure(deformed_inside_test=True, split_islands=True)
+    assert w.settings()["deformed_inside_test"] is True and w.settings()["split_islands"] is True
     with pytest.raises(sm.ArgumentTypeError) as e:
         w.configure(deformed_inside_test="yes")
     assert e.value.argument == "deformed_inside_test" and w.settings()["deformed_inside_test"] is True

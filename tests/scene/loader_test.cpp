@@ -274,6 +274,7 @@ TEST(SceneLoaderErrors, ContactSolverSettingsNameTheirPointer)
                          "/settings/contact/soft/relax_iterations", "found -1"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"relax_iterations": 101}}}})",
                          "/settings/contact/soft/relax_iterations", "found 101"));
+    EXPECT_TRUE(fails_at(R"({"settings": {"split_islands": 1}})", "/settings/split_islands", "expected true or false, found 1"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": 65}}}})",
                          "/settings/contact/soft/substeps", "found 65"));
     EXPECT_TRUE(fails_at(R"({"settings": {"contact": {"soft": {"substeps": -1}}}})",

@@ -135,6 +135,7 @@ std::vector<std::string> scene_diff(const sm::Scene& a, const sm::Scene& b)
     d.check(x.max_steps_per_advance == y.max_steps_per_advance, "max_steps_per_advance");
     d.check(x.constraint_iterations == y.constraint_iterations, "constraint_iterations");
     d.check(x.thread_count == y.thread_count, "thread_count");
+    d.check(x.split_islands == y.split_islands, "split_islands");
     d.check(x.sleep.enabled == y.sleep.enabled, "sleep.enabled");
     d.num(x.sleep.linear_speed, y.sleep.linear_speed, "sleep.linear_speed");
     d.num(x.sleep.angular_speed, y.sleep.angular_speed, "sleep.angular_speed");
@@ -244,7 +245,7 @@ std::string every_field_scene()
                                        "relax_iterations": 4, "substeps": 3 },
                              "path": "sampling", "stiffness": "material", "sample_spacing": 0.03,
                              "max_samples_per_body": 700, "deformed_inside_test": true },
-                "threads": 2,
+                "threads": 2, "split_islands": true,
                 "sleep": { "enabled": false, "linear_speed": 0.125, "angular_speed": 0.75, "time": 1.25 } },
   "camera": { "target": [0.1, 0.5, -0.25], "distance": 3.5, "yaw": -40, "pitch": 35, "fov": 50 },
   "materials": {
@@ -372,6 +373,10 @@ TEST(SceneWriter, SaveReplacesTheFileAtomicallyAndRefusesABadFolder)
         << failed.error().message();
     EXPECT_FALSE(fs::exists(missing));
     fs::remove_all(dir);
+    // A device takes the text in place: renaming over it would make /dev/null a file.
+    sm::Status to_device = sm::save_scene(*scene, "/dev/null");
+    EXPECT_TRUE(to_device) << to_device.error().message();
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
 TEST(SceneWriter, RefreshKeepsTheRunningStateAndEditedShapes)

@@ -41,6 +41,7 @@ struct ConstraintWorld {
     uint64_t broken_count = 0;  ///< Constraints broken since creation.
     std::vector<Entity> parent; ///< Model: parent by child entity index (null = none); see hierarchy.h.
     int iterations = 4;         ///< Gauss–Seidel passes per substep (WorldDef::constraint_iterations).
+    bool split_islands = false; ///< Large islands in slabs for the threads (WorldDef::split_islands).
     double max_error = 0.0;     ///< Derived: largest linear error after the last substep [m].
 };
 

@@ -73,6 +73,9 @@ class EntityPool
     /// Number of slots ever made (including slot 0); an upper bound for index-ordered arrays.
     [[nodiscard]] std::size_t slot_count() const { return m_generation.size(); }
 
+    /// The live entity in slot `index`.
+    [[nodiscard]] Entity at(uint32_t index) const { return {index, m_generation[index]}; }
+
     /// Calls fn(Entity) for each live entity in increasing index order.
     template <class Fn> void for_each_alive(Fn&& fn) const
     {

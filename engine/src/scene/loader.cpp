@@ -36,7 +36,7 @@ const std::vector<std::string_view> k_include_keys = {"file", "prefix", "positio
 constexpr size_t k_max_include_depth = 16;
 const std::vector<std::string_view> k_settings_keys = {
     "dt",      "substeps", "gravity",  "duration", "max_steps_per_advance", "constraint_iterations",
-    "contact", "threads",  "accuracy", "sleep"};
+    "contact", "threads",  "accuracy", "sleep", "split_islands"};
 const std::vector<std::string_view> k_sleep_keys = {"enabled", "linear_speed", "angular_speed", "time"};
 const std::vector<std::string_view> k_accuracy_keys = {"displacement"};
 const std::vector<std::string_view> k_contact_keys = {
@@ -138,6 +138,7 @@ void read_settings(Reader& r, const Json& root, Scene& out_scene)
     if (const Json* contact = r.member(*settings, "contact"))
         read_contact(r, *contact, where + "/contact", world.contact);
     r.field_int(*settings, where, "threads", scene_io::closed(1.0, k_max_threads), world.thread_count);
+    r.field_bool(*settings, where, "split_islands", world.split_islands);
     if (const Json* sleep = r.member(*settings, "sleep"))
         read_sleep(r, *sleep, where + "/sleep", world.sleep);
     if (const Json* accuracy = r.member(*settings, "accuracy"))

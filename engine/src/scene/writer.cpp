@@ -64,6 +64,7 @@ Json settings_json(const Scene& scene)
                     {"max_samples_per_body", w.contact.max_samples_per_body},
                     {"deformed_inside_test", w.contact.deformed_inside_test}};
     s["threads"] = w.thread_count;
+    s["split_islands"] = w.split_islands;
     s["sleep"] = {{"enabled", w.sleep.enabled},
                   {"linear_speed", w.sleep.linear_speed},
                   {"angular_speed", w.sleep.angular_speed},

@@ -370,33 +370,63 @@ void solve_row(Row& r)
     solve_friction(r);
 }
 
-// Warm start and every pass of one island, its rows in their global order (the constraints', then the
-// extra rows'): as the serial loop over all rows does to each of the island's bodies, since no other
-// row touches them.
-void solve_island(Row* rows, size_t row_count, std::span<const uint32_t> island, int iterations,
-                  const ExtraRows& extra)
-{
-    for (uint32_t i : island)
-        if (i < row_count && rows[i].active)
-            warm_start(rows[i]);
-    for (int pass = 0; pass < iterations; ++pass)
-        for (uint32_t i : island) {
-            if (i >= row_count)
-                extra.solve(extra.ctx, i - row_count);
-            else if (rows[i].active)
-                solve_row(rows[i]);
-        }
-}
-
-// fn(island) for every island, on the parts of `par` (an island is never split).
+// fn(index, island) for every island, on the parts of `par` (an island is never split).
 template <class Fn> void for_islands(const Parallel& par, const IslandBuilder& islands, size_t rows, Fn&& fn)
 {
     const size_t parts = std::min(par.part_count(rows, k_min_rows_per_part), islands.island_count());
     par.for_parts(parts, 1, [&](size_t part, size_t, size_t) {
         const auto [first, last] = islands.islands_of_part(part, parts);
         for (size_t i = first; i < last; ++i)
-            fn(islands.island(i));
+            fn(i, islands.island(i));
     });
+}
+
+// Splits each island of at least two slabs' rows by its bodies' positions (IslandSlabs).
+void split_large_islands(const Registry& bodies, bool enabled, ConstraintScratch& s)
+{
+    const IslandBuilder& islands = s.islands;
+    s.island_split.assign(islands.island_count(), k_not_split);
+    s.split_count = 0;
+    if (!enabled)
+        return;
+    auto position = [&](uint32_t node) { return bodies.get<Pose>(bodies.pool().at(node)).position; };
+    for (size_t i = 0; i < islands.island_count(); ++i) {
+        const std::span<const uint32_t> rows = islands.island(i);
+        const size_t slabs = std::min(rows.size() / k_rows_per_slab, k_max_slabs);
+        if (slabs < 2)
+            continue;
+        if (s.slabs.size() <= s.split_count)
+            s.slabs.emplace_back();
+        s.slabs[s.split_count].build(rows, islands, slabs, position);
+        s.island_split[i] = static_cast<uint32_t>(s.split_count++);
+    }
+}
+
+// `passes` times fn(row) over every row: each island in its rows' global order, on one thread, as the
+// serial loop over all rows does to each of the island's bodies since no other row touches them; a split
+// island phase by phase, a phase's groups on the threads. The result does not depend on the threads.
+template <class Fn>
+void run_islands(const Parallel& par, const ConstraintScratch& s, size_t rows, int passes, Fn&& fn)
+{
+    for_islands(par, s.islands, rows, [&](size_t index, std::span<const uint32_t> island) {
+        if (s.island_split[index] != k_not_split)
+            return;
+        for (int pass = 0; pass < passes; ++pass)
+            for (uint32_t i : island)
+                fn(i);
+    });
+    for (size_t k = 0; k < s.split_count; ++k) {
+        const IslandSlabs& split = s.slabs[k];
+        for (int pass = 0; pass < passes; ++pass)
+            for (size_t p = 0; p < IslandSlabs::k_phases; ++p) {
+                const auto [first, last] = split.phase(p);
+                par.for_parts(last - first, 1, [&](size_t, size_t begin, size_t end) {
+                    for (size_t g = first + begin; g < first + end; ++g)
+                        for (uint32_t i : split.group(g))
+                            fn(i);
+                });
+            }
+    }
 }
 
 // On the stepping thread in row order: breaks, then the impulses become the state that warm-starts the
@@ -433,8 +463,18 @@ void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Regist
     scratch.row_count = n;
     const std::span<Row> rows(scratch.rows.data(), n);
     prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands, extra);
-    for_islands(par, scratch.islands, n + extra.count, [&](std::span<const uint32_t> island) {
-        solve_island(rows.data(), n, island, cw.iterations, extra);
+    split_large_islands(bodies, cw.split_islands, scratch);
+    const size_t total = n + extra.count;
+    if (n > 0) // the warm start first, on every island
+        run_islands(par, scratch, total, 1, [&](uint32_t i) {
+            if (i < n && rows[i].active)
+                warm_start(rows[i]);
+        });
+    run_islands(par, scratch, total, cw.iterations, [&](uint32_t i) {
+        if (i >= n)
+            extra.solve(extra.ctx, i - n);
+        else if (rows[i].active)
+            solve_row(rows[i]);
     });
     finish_rows(ctx.h, rows, cw);
 }
@@ -443,11 +483,9 @@ void solve_extra_rows(const Parallel& par, const ConstraintScratch& scratch, siz
                       void (*fn)(void* ctx, size_t i), void* ctx)
 {
     const size_t n = scratch.row_count;
-    for_islands(par, scratch.islands, n + extra_count, [&](std::span<const uint32_t> island) {
-        for (int pass = 0; pass < passes; ++pass)
-            for (uint32_t i : island)
-                if (i >= n)
-                    fn(ctx, i - n);
+    run_islands(par, scratch, n + extra_count, passes, [&](uint32_t i) {
+        if (i >= n)
+            fn(ctx, i - n);
     });
 }
 

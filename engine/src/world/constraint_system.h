@@ -26,7 +26,18 @@ struct ConstraintScratch {
     std::vector<ConstraintRow> rows; ///< This substep's rows, in `order`.
     IslandBuilder islands;           ///< Islands of `rows` (and the extra rows after them).
     size_t row_count = 0;            ///< Constraint rows of the last substep; extra rows follow.
+    std::vector<IslandSlabs> slabs; ///< The large islands' splits (the first split_count are this substep's).
+    size_t split_count = 0;
+    std::vector<uint32_t> island_split; ///< Per island: its split in `slabs`, or k_not_split.
 };
+
+/// An island small enough for one thread (island_split).
+inline constexpr uint32_t k_not_split = UINT32_MAX;
+/// Rows per slab when a large island is split for threads, and the most slabs: an island of fewer than
+/// two slabs' rows is solved whole on one thread. Islands under 2·512 rows keep the serial order (and
+/// bits) they always had; 8 slabs are enough to keep 8 threads busy with three phases per pass.
+inline constexpr size_t k_rows_per_slab = 512;
+inline constexpr size_t k_max_slabs = 8;
 
 /// Rows of another kind solved in the same Gauss–Seidel passes (the soft contacts). Row i joins the
 /// islands through the bodies nodes(i) names (k_no_node for an end no impulse changes) and is solved,

@@ -2,6 +2,7 @@
 #include "world/islands.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace supermodal
 {
@@ -105,6 +106,107 @@ std::pair<size_t, size_t> IslandBuilder::islands_of_part(size_t part, size_t par
     if (m_start.empty())
         return {0, 0};
     return {first_at(rows * part / parts), first_at(rows * (part + 1) / parts)};
+}
+
+void IslandSlabs::collect_nodes(std::span<const uint32_t> rows, const IslandBuilder& islands)
+{
+    m_nodes.clear();
+    auto add = [&](uint32_t n) {
+        if (n == k_no_node)
+            return;
+        if (n >= m_slab.size())
+            m_slab.resize(static_cast<size_t>(n) + 1, k_unset);
+        if (m_slab[n] == k_unset) {
+            m_slab[n] = 0;
+            m_nodes.push_back(n);
+        }
+    };
+    for (uint32_t r : rows) {
+        const auto [a, b] = islands.ends(r);
+        add(a);
+        add(b);
+    }
+}
+
+namespace
+{
+
+// A coordinate to sort by: a body whose state went non-finite (it is frozen later in the stage) sorts
+// as if at 0 rather than breaking the order.
+double sort_coordinate(const Vec3& p, int axis)
+{
+    const double x = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+    return std::isfinite(x) ? x : 0.0;
+}
+
+// The axis (0, 1, 2) along which the points spread furthest.
+template <class Keys> int longest_axis(const Keys& keys)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const auto& k : keys)
+        for (int a = 0; a < 3; ++a) {
+            const double x = sort_coordinate(k.position, a);
+            lo[a] = std::min(lo[a], x);
+            hi[a] = std::max(hi[a], x);
+        }
+    int best = 0;
+    for (int a = 1; a < 3; ++a)
+        if (hi[a] - lo[a] > hi[best] - lo[best])
+            best = a;
+    return best;
+}
+
+} // namespace
+
+uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) const
+{
+    const auto k = static_cast<uint32_t>(slabs);
+    const uint32_t lo = std::min(slab_a, slab_b), hi = std::max(slab_a, slab_b);
+    if (lo == hi)
+        return lo;
+    if (hi != lo + 1)
+        return 2 * k - 1;
+    // Seams after even slabs first, then after odd ones.
+    return lo % 2 == 0 ? k + lo / 2 : k + k / 2 + lo / 2;
+}
+
+void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+{
+    const int axis = longest_axis(m_keys);
+    std::sort(m_keys.begin(), m_keys.end(), [axis](const Key& x, const Key& y) {
+        const double cx = sort_coordinate(x.position, axis), cy = sort_coordinate(y.position, axis);
+        return cx < cy || (cx == cy && x.node < y.node);
+    });
+    const size_t n = m_keys.size();
+    for (size_t i = 0; i < n; ++i)
+        m_slab[m_keys[i].node] = static_cast<uint32_t>(i * slabs / n);
+    const size_t groups = 2 * slabs;
+    m_phase[0] = 0;
+    m_phase[1] = slabs;
+    m_phase[2] = slabs + slabs / 2;
+    m_phase[3] = groups - 1;
+    m_phase[4] = groups;
+    m_row_group.resize(rows.size());
+    m_start.assign(groups + 1, 0);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const auto [a, b] = islands.ends(rows[i]);
+        if (a == k_no_node && b == k_no_node) {
+            m_row_group[i] = static_cast<uint32_t>(groups - 1);
+        } else {
+            const uint32_t sa = a != k_no_node ? m_slab[a] : m_slab[b];
+            const uint32_t sb = b != k_no_node ? m_slab[b] : sa;
+            m_row_group[i] = group_of(sa, sb, slabs);
+        }
+        ++m_start[m_row_group[i] + 1];
+    }
+    for (size_t g = 0; g < groups; ++g)
+        m_start[g + 1] += m_start[g];
+    m_fill.assign(m_start.begin(), m_start.end() - 1);
+    m_rows.resize(rows.size());
+    for (size_t i = 0; i < rows.size(); ++i)
+        m_rows[m_fill[m_row_group[i]]++] = rows[i];
+    for (uint32_t node : m_nodes)
+        m_slab[node] = k_unset;
 }
 
 } // namespace supermodal

@@ -8,6 +8,8 @@
 // from the same static body stay two islands.
 #pragma once
 
+#include "supermodal/math.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -34,6 +36,8 @@ class IslandBuilder
     void build();
 
     [[nodiscard]] size_t row_count() const { return m_ends.size(); }
+    /// The two nodes row r links (as added).
+    [[nodiscard]] std::pair<uint32_t, uint32_t> ends(size_t r) const { return m_ends[r]; }
     [[nodiscard]] size_t island_count() const { return m_start.empty() ? 0 : m_start.size() - 1; }
     /// Rows of island i, ascending.
     [[nodiscard]] std::span<const uint32_t> island(size_t i) const
@@ -59,6 +63,58 @@ class IslandBuilder
     std::vector<uint32_t> m_start;                     ///< Per island + 1: offset into m_rows.
     std::vector<uint32_t> m_fill;                      ///< Per island: next free slot (build only).
     std::vector<uint32_t> m_rows;                      ///< Row indices grouped by island.
+};
+
+/// One large island's rows in groups that threads can solve side by side (a domain split). The island's
+/// bodies, sorted along the island's longest extent, fill `slabs` slabs of equal count. A row whose
+/// bodies are in one slab belongs to that slab; a row across two neighbouring slabs to their seam; any
+/// other row (a body reaching past a whole slab) to one last group. Phases, in solving order: the slabs,
+/// the seams after even slabs, the seams after odd slabs, the last group. No two groups of a phase share
+/// a body, so a phase's groups may run on any threads in any order with the bits of one thread; each
+/// group keeps its rows in their global order. The split depends only on the rows and the positions.
+class IslandSlabs
+{
+  public:
+    static constexpr size_t k_phases = 4;
+
+    /// Splits `rows` (one island's, ascending, their ends read from `islands`) into `slabs` slabs;
+    /// position(node) is the node's position [m], world.
+    template <class Position>
+    void build(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
+               Position&& position)
+    {
+        collect_nodes(rows, islands);
+        m_keys.clear();
+        for (uint32_t n : m_nodes)
+            m_keys.push_back({position(n), n});
+        split(rows, islands, slabs);
+    }
+
+    /// Groups [first, last) of phase p.
+    [[nodiscard]] std::pair<size_t, size_t> phase(size_t p) const { return {m_phase[p], m_phase[p + 1]}; }
+    /// Rows of group g, ascending.
+    [[nodiscard]] std::span<const uint32_t> group(size_t g) const
+    {
+        return {m_rows.data() + m_start[g], m_start[g + 1] - m_start[g]};
+    }
+
+  private:
+    struct Key {
+        Vec3 position;
+        uint32_t node;
+    };
+    void collect_nodes(std::span<const uint32_t> rows, const IslandBuilder& islands);
+    void split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs);
+    [[nodiscard]] uint32_t group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) const;
+
+    std::vector<uint32_t> m_nodes;     ///< The island's nodes, as their rows first name them.
+    std::vector<Key> m_keys;           ///< Per node of m_nodes: its position.
+    std::vector<uint32_t> m_slab;      ///< Per node index: its slab while splitting, else unset.
+    std::vector<uint32_t> m_row_group; ///< Per row of the island: its group.
+    std::vector<uint32_t> m_start;     ///< Per group + 1: offset into m_rows.
+    std::vector<uint32_t> m_fill;      ///< Per group: next free slot (split only).
+    std::vector<uint32_t> m_rows;      ///< Rows grouped.
+    size_t m_phase[k_phases + 1]{};    ///< Per phase + 1: first group.
 };
 
 } // namespace supermodal

@@ -172,6 +172,7 @@ void World::Impl::step()
         run(Stage::PenaltyForces, [&] {
             apply_penalty_forces(def, ctx, reg, parallel, contact, warnings);
             constraints.iterations = def.constraint_iterations;
+            constraints.split_islands = def.split_islands;
             apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints);
             freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
             update_contact_anchors(ctx, reg, parallel, contact);
@@ -219,6 +220,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         else
             prepare_soft_contacts(def.contact, ctx, parallel, reg, contact);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
+        constraints.split_islands = def.split_islands;
         apply_constraint_forces(ctx, parallel, reg, constraints, scratch.constraints,
                                 soft_contact_rows(contact.soft, true));
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
