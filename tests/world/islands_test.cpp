@@ -162,6 +162,13 @@ sm::Vec3 on_a_line(uint32_t node)
     return {0.1 * node, 0.01 * (node % 3), 0.0};
 }
 
+// One island: a chain of rows linking nodes 1-2, 2-3, ..., (n-1)-n.
+void add_chain(sm::IslandBuilder& b, uint32_t n)
+{
+    for (uint32_t i = 1; i < n; ++i)
+        b.add_row(i, i + 1);
+}
+
 } // namespace
 
 TEST(IslandSlabs, AChainSplitsIntoSlabsSeamsAndNoRest)
@@ -195,8 +202,7 @@ TEST(IslandSlabs, FollowsThePositionsNotTheNodeNumbers)
 {
     // The same chain with its bodies placed in reverse: the first slab is now the high node numbers.
     sm::IslandBuilder b;
-    for (uint32_t i = 1; i < 2000; ++i)
-        b.add_row(i, i + 1);
+    add_chain(b, 2000);
     b.build();
     const auto rows = b.island(0);
     sm::IslandSlabs split;
@@ -211,8 +217,7 @@ TEST(IslandSlabs, ARowPastAWholeSlabGoesLast)
 {
     // A chain of 3000 along x and one long row from its first body to its last (a rope, say).
     sm::IslandBuilder b;
-    for (uint32_t i = 1; i < 3000; ++i)
-        b.add_row(i, i + 1);
+    add_chain(b, 3000);
     b.add_row(1, 3000);
     b.build();
     const auto rows = b.island(0);
@@ -228,8 +233,7 @@ TEST(IslandSlabs, ARowPastAWholeSlabGoesLast)
 TEST(IslandSlabs, NonFinitePositionsStillSplitEveryRow)
 {
     sm::IslandBuilder b;
-    for (uint32_t i = 1; i < 1500; ++i)
-        b.add_row(i, i + 1);
+    add_chain(b, 1500);
     b.build();
     const auto rows = b.island(0);
     sm::IslandSlabs split;
