@@ -183,10 +183,13 @@ TEST(CapiWorld, SettingsChangeBetweenStepsWithinTheirRules)
     def.thread_count = 1;
     def.substep_count = 4;
     def.gravity = sm_vec3{1, 2, 3};
+    EXPECT_EQ(def.split_islands, 0);
+    def.split_islands = 1;
     ASSERT_EQ(sm_world_set_def(w, &def), SM_OK);
     sm_world_def now{};
     ASSERT_EQ(sm_world_get_def(w, &now), SM_OK);
     EXPECT_EQ(now.substep_count, 4);
+    EXPECT_EQ(now.split_islands, 1);
     EXPECT_EQ(now.gravity.z, 3.0);
     def.substep_count = 0;
     EXPECT_EQ(sm_world_create(&def, &w), SM_ERROR_INVALID_ARGUMENT) << "checked like WorldDef";

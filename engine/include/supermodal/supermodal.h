@@ -86,6 +86,8 @@ typedef struct sm_world_def {
     int max_steps_per_advance; /* sm_world_advance() runs at most this many steps, >= 1. Default 64. */
     int constraint_iterations; /* Constraint passes per substep, in [1, 100]. Default 4. */
     int thread_count;          /* Threads for the step, in [1, 64]; results are bit-identical for any. */
+    int split_islands;         /* Nonzero: islands of >= 1024 rows are solved in slabs the threads share
+                                * (bit-identical for any thread count, not to a run without). Default 0. */
 } sm_world_def;
 
 SM_API sm_world_def sm_world_def_default(void);

@@ -79,6 +79,7 @@ WorldDef from_c(const sm_world_def& d)
     def.max_steps_per_advance = d.max_steps_per_advance;
     def.constraint_iterations = d.constraint_iterations;
     def.thread_count = d.thread_count;
+    def.split_islands = d.split_islands != 0;
     return def;
 }
 
@@ -89,7 +90,8 @@ sm_world_def to_c(const WorldDef& def)
             capi::to_c(def.gravity),
             def.max_steps_per_advance,
             def.constraint_iterations,
-            def.thread_count};
+            def.thread_count,
+            def.split_islands ? 1 : 0};
 }
 
 sm_status adopt(Result<World> built, sm_world** out_world)
@@ -231,6 +233,7 @@ sm_status sm_world_set_def(sm_world* world, const sm_world_def* def)
         next.gravity = asked.gravity;
         next.max_steps_per_advance = asked.max_steps_per_advance;
         next.constraint_iterations = asked.constraint_iterations;
+        next.split_islands = asked.split_islands;
         if (const Status s = world->world.set_settings(next); !s)
             return invalid_argument("sm_world_set_def", s.error().where.c_str(), s.error().what.c_str());
         return ok();
