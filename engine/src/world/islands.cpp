@@ -2,6 +2,7 @@
 #include "world/islands.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace supermodal
@@ -139,8 +140,8 @@ double sort_coordinate(const Vec3& p, int axis)
     return std::isfinite(x) ? x : 0.0;
 }
 
-// The axis (0, 1, 2) along which the points spread furthest.
-template <class Keys> int longest_axis(const Keys& keys)
+// How far the points spread along each axis [m].
+template <class Keys> std::array<double, 3> extents(const Keys& keys)
 {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (const auto& k : keys)
@@ -149,11 +150,7 @@ template <class Keys> int longest_axis(const Keys& keys)
             lo[a] = std::min(lo[a], x);
             hi[a] = std::max(hi[a], x);
         }
-    int best = 0;
-    for (int a = 1; a < 3; ++a)
-        if (hi[a] - lo[a] > hi[best] - lo[best])
-            best = a;
-    return best;
+    return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
 }
 
 } // namespace
@@ -170,9 +167,8 @@ uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) c
     return lo % 2 == 0 ? k + lo / 2 : k + k / 2 + lo / 2;
 }
 
-void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+void IslandSlabs::assign_slabs(int axis, size_t slabs)
 {
-    const int axis = longest_axis(m_keys);
     std::sort(m_keys.begin(), m_keys.end(), [axis](const Key& x, const Key& y) {
         const double cx = sort_coordinate(x.position, axis), cy = sort_coordinate(y.position, axis);
         return cx < cy || (cx == cy && x.node < y.node);
@@ -180,6 +176,46 @@ void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& isl
     const size_t n = m_keys.size();
     for (size_t i = 0; i < n; ++i)
         m_slab[m_keys[i].node] = static_cast<uint32_t>(i * slabs / n);
+}
+
+uint32_t IslandSlabs::row_group(uint32_t row, const IslandBuilder& islands, size_t slabs) const
+{
+    const auto [a, b] = islands.ends(row);
+    if (a == k_no_node && b == k_no_node)
+        return static_cast<uint32_t>(2 * slabs - 1);
+    const uint32_t sa = a != k_no_node ? m_slab[a] : m_slab[b];
+    const uint32_t sb = b != k_no_node ? m_slab[b] : sa;
+    return group_of(sa, sb, slabs);
+}
+
+// The slabs run along the axis, of those at least half as long as the longest, whose groups break the
+// rows' own order least: a group walks its rows in that order, which is their order in memory, and
+// short runs with gaps between them cost the hardware's prefetching (measured on a 4000-body pile: the
+// passes 20% slower than unsplit across the grid the bodies were created along, 9% along it).
+int IslandSlabs::choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+{
+    const std::array<double, 3> extent = extents(m_keys);
+    const double longest = std::max({extent[0], extent[1], extent[2]});
+    int best = -1;
+    size_t best_breaks = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(extent[axis] >= 0.5 * longest))
+            continue;
+        assign_slabs(axis, slabs);
+        size_t breaks = 0;
+        for (size_t i = 1; i < rows.size(); ++i)
+            breaks += row_group(rows[i], islands, slabs) != row_group(rows[i - 1], islands, slabs);
+        if (best < 0 || breaks < best_breaks) {
+            best = axis;
+            best_breaks = breaks;
+        }
+    }
+    return std::max(best, 0);
+}
+
+void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+{
+    assign_slabs(choose_axis(rows, islands, slabs), slabs);
     const size_t groups = 2 * slabs;
     m_phase[0] = 0;
     m_phase[1] = slabs;
@@ -189,14 +225,7 @@ void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& isl
     m_row_group.resize(rows.size());
     m_start.assign(groups + 1, 0);
     for (size_t i = 0; i < rows.size(); ++i) {
-        const auto [a, b] = islands.ends(rows[i]);
-        if (a == k_no_node && b == k_no_node) {
-            m_row_group[i] = static_cast<uint32_t>(groups - 1);
-        } else {
-            const uint32_t sa = a != k_no_node ? m_slab[a] : m_slab[b];
-            const uint32_t sb = b != k_no_node ? m_slab[b] : sa;
-            m_row_group[i] = group_of(sa, sb, slabs);
-        }
+        m_row_group[i] = row_group(rows[i], islands, slabs);
         ++m_start[m_row_group[i] + 1];
     }
     for (size_t g = 0; g < groups; ++g)

@@ -66,7 +66,8 @@ class IslandBuilder
 };
 
 /// One large island's rows in groups that threads can solve side by side (a domain split). The island's
-/// bodies, sorted along the island's longest extent, fill `slabs` slabs of equal count. A row whose
+/// bodies, sorted along one axis (of those at least half the island's longest extent, the one whose
+/// slabs keep the rows' memory order in the longest runs), fill `slabs` slabs of equal count. A row whose
 /// bodies are in one slab belongs to that slab; a row across two neighbouring slabs to their seam; any
 /// other row (a body reaching past a whole slab) to one last group. Phases, in solving order: the slabs,
 /// the seams after even slabs, the seams after odd slabs, the last group. No two groups of a phase share
@@ -105,6 +106,9 @@ class IslandSlabs
     };
     void collect_nodes(std::span<const uint32_t> rows, const IslandBuilder& islands);
     void split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs);
+    int choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs);
+    void assign_slabs(int axis, size_t slabs);
+    [[nodiscard]] uint32_t row_group(uint32_t row, const IslandBuilder& islands, size_t slabs) const;
     [[nodiscard]] uint32_t group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) const;
 
     std::vector<uint32_t> m_nodes;     ///< The island's nodes, as their rows first name them.
