@@ -68,6 +68,7 @@ def plot(out_csv, lines):
         print("gnuplot not found: no plot")
         return
     data = out_csv[:-4] + ".dat"
+    bars = 0
     with open(data, "w", encoding="utf-8") as f:
         f.write("# scene build speedup ms_1 ms_2\n")
         ms = {(r[5], r[4], r[3], int(r[7])): r[8] for r in lines}  # a run: scene, build, commit
@@ -77,9 +78,10 @@ def plot(out_csv, lines):
                 ms_1 = float(ms[(r[5], r[4], r[3], 1)])
                 label = f"{r[5].replace('.json', '')}\\n{r[4]} {r[0][5:]}\\n{ms_1:.1f} -> {float(r[8]):.1f} ms"
                 f.write(f'"{label}" {r[10]}\n')
+                bars += 1
     png = out_csv[:-4] + ".png"
     script = f"""
-set terminal pngcairo size 1400,500 font "Helvetica,10" noenhanced
+set terminal pngcairo size {max(1400, 130 * bars)},500 font "Helvetica,10" noenhanced
 set output "{png}"
 set style data histograms
 set style fill solid 0.8 border -1

@@ -183,7 +183,7 @@ mirror WorldDef and ContactDef (defaults in brackets):
   constraint_iterations [4], in [1, 100]: Gauss-Seidel passes over the joints per substep.
   thread_count [1], in [1, 64]: threads of the step (fixed at creation; results are identical for any).
   split_islands [False]: solve islands of 1024 rows or more in slabs the threads share (identical for
-      any thread_count, not to a run without it; costs 10-20% of the solve on one thread).
+      any thread_count, not to a run without it; costs up to ~10% of the solve on one thread).
   contact_enabled [True].
   contact_solver ['soft']: 'soft' (implicit, stable at any step) or 'penalty' (the paper's explicit
       springs, want small steps).

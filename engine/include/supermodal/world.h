@@ -53,7 +53,7 @@ struct WorldDef {
     /// Solve islands of at least 1024 rows (a pile of hundreds of touching bodies) in slabs that the
     /// threads share, instead of each island on one thread. Results stay bit-identical for any thread
     /// count, but differ from those without the split (another Gauss–Seidel order). Off by default: on
-    /// one thread the split order costs 10–20% more solver time on large piles (rows walked out of
+    /// one thread the split order costs up to ~10% more solver time on large piles (rows walked out of
     /// memory order); turn it on where a large island meets two or more free cores.
     bool split_islands = false;
     /// The host's scheduler for the step's parallel loops (supermodal/tasks.h), shared with the host and
