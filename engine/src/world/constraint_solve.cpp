@@ -419,8 +419,10 @@ void run_islands(const Parallel& par, const ConstraintScratch& s, size_t rows, i
         const IslandSlabs& split = s.slabs[k];
         for (int pass = 0; pass < passes; ++pass)
             for (size_t p = 0; p < IslandSlabs::k_phases; ++p) {
-                const auto [first, last] = split.phase(p);
-                par.for_parts(last - first, 1, [&](size_t, size_t begin, size_t end) {
+                // Not a structured binding: lambdas may not capture those before clang 16.
+                const std::pair<size_t, size_t> groups = split.phase(p);
+                const size_t first = groups.first;
+                par.for_parts(groups.second - first, 1, [&](size_t, size_t begin, size_t end) {
                     for (size_t g = first + begin; g < first + end; ++g)
                         for (uint32_t i : split.group(g))
                             fn(i);
