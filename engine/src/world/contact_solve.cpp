@@ -146,7 +146,7 @@ struct AnySides {
 
 // ... or, for two rigid bodies, straight on their velocities: the arithmetic of anchor_velocity() and
 // push() without their calls and checks per row (the rows were a quarter of the rounded-box pile's
-// step through them). Whether a body was frozen since its sides were made is asked once per pair: a
+// step through them). Whether a body can move is noted per pair (SoftPair::free_a), not asked per row: a
 // body freezes only between the solver's phases (freeze_non_finite), never inside one pass.
 struct RigidSides {
     bool free_a = false, free_b = false; // dynamic and not frozen (SoftPair::free_a)
