@@ -3,6 +3,7 @@
 
 #include "core/parallel.h"
 #include "dynamics/step_context.h"
+#include "world/contact_rows.h"
 #include "world/contact_system.h"
 #include "world/heavy_on_light.h"
 #include "world/islands.h"
@@ -19,37 +20,9 @@ namespace supermodal
 namespace
 {
 
-// Most rows a pair takes: a sampled pair may have dozens of points on one patch, and as rigid rows
-// they are nearly redundant, which Gauss–Seidel converges on slowly (measured: a sampled sphere resting
-// at 1/60 s rolled at 2 mm/s on all its points). Four spanning the patch hold it flat.
-constexpr size_t k_max_rows_per_pair = 4;
-// ... but a deforming body is not flat under four rows: loaded at four points, its modes bend round
-// them, and the order the rows are taken in shows (measured: an elastic block pressed straight down at
-// its top's middle slid 0.18 mm on four rows, 0.05 mm on 32). Its modal compliance keeps many rows
-// from being redundant; they spread over the patch like the samples the penalty method loads.
-constexpr size_t k_max_rows_per_modal_pair = 32;
-// Bodies with an exponent below this have flat faces and rest on a patch; rounder ones touch in one
-// point, their deepest (as the support-map manifold treats them): several rows around a sphere's contact
-// spot are nearly parallel, and their rounding let a sampled sphere roll off at 1.5 mm/s.
-constexpr double k_flat_exponent = 0.8;
 // A pair's friction counts as sliding from this fraction of μ times its normal impulse [-]: the clamp
 // of each point leaves the sum a rounding short of the disc when every point is at its own.
 constexpr double k_pair_slide_fraction = 0.99;
-
-// Above this a superquadric is concave: it rests on several separate tips (a star's arms), and one row
-// at the deepest did not hold it (measured: an ε 3.5 star dropped at 2 ms still moved at 3.7 cm/s after
-// 10 s). Its rows span the tips as a flat face's span its patch.
-constexpr double k_concave_exponent = 2.0;
-
-// Whether the body rests on a patch or on several tips rather than in one point.
-bool rests_on_a_patch(const BodyModel& m)
-{
-    if (m.shape.type != ShapeType::Superquadric)
-        return false;
-    const double lo = std::min(m.shape.epsilon1, m.shape.epsilon2);
-    const double hi = std::max(m.shape.epsilon1, m.shape.epsilon2);
-    return lo < k_flat_exponent || hi > k_concave_exponent;
-}
 // The spring's frequency when none is set, as a fraction of the substep rate: stiff enough that a body
 // sinks little under its own weight (g/ω²: 0.28 mm at 1/60 s), soft enough that the passes converge
 // (measured on a column of five rounded boxes at 1/60 s: a quarter sank 1.2 mm per contact and needed
@@ -273,77 +246,6 @@ SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint
     if (p.a.modal.active() || p.b.modal.active())
         return make_soft(tuned, k_modal_damping_scale * zeta, h);
     return make_soft(std::min(tuned, std::max(omega, k_max_tuned_omega_h / h)), zeta, h);
-}
-
-// out.size() of the points, farthest-point first from the deepest: each next the one farthest from
-// all taken, so the rows cover the patch evenly.
-size_t spread_rows(std::span<const ContactPoint> points, std::span<uint32_t> out)
-{
-    size_t first = 0;
-    for (size_t i = 1; i < points.size(); ++i)
-        if (points[i].depth > points[first].depth)
-            first = i;
-    thread_local std::vector<double> gap; // squared distance to the nearest taken [m²]; kept: no allocation
-    gap.assign(points.size(), std::numeric_limits<double>::infinity());
-    out[0] = static_cast<uint32_t>(first);
-    for (size_t count = 1; count < out.size(); ++count) {
-        const Vec3 last = points[out[count - 1]].point;
-        size_t best = 0;
-        for (size_t i = 0; i < points.size(); ++i) {
-            const Vec3 d = points[i].point - last;
-            gap[i] = std::min(gap[i], dot(d, d));
-            if (gap[i] > gap[best])
-                best = i;
-        }
-        out[count] = static_cast<uint32_t>(best);
-    }
-    return out.size();
-}
-
-// Up to out.size() (k_max_rows_per_pair) of the points: the deepest, then each next the one that widens the
-// patch most in the contact plane (farthest from the first, then from their line, then from their triangle).
-size_t pick_rows(std::span<const ContactPoint> points, bool flat_faces, std::span<uint32_t> out)
-{
-    if (!flat_faces) {
-        out[0] = 0;
-        for (size_t i = 1; i < points.size(); ++i)
-            if (points[i].depth > points[out[0]].depth)
-                out[0] = static_cast<uint32_t>(i);
-        return 1;
-    }
-    if (points.size() <= out.size()) {
-        for (size_t i = 0; i < points.size(); ++i)
-            out[i] = static_cast<uint32_t>(i);
-        return points.size();
-    }
-    if (out.size() > k_max_rows_per_pair)
-        return spread_rows(points, out);
-    const Vec3 n = points[0].normal;
-    auto flat = [&](size_t i) { return points[i].point - dot(points[i].point, n) * n; };
-    size_t count = 0;
-    auto take_best = [&](auto&& score) {
-        size_t best = 0;
-        double best_score = -1.0;
-        for (size_t i = 0; i < points.size(); ++i)
-            if (const double sc = score(flat(i)); sc > best_score) {
-                best = i;
-                best_score = sc;
-            }
-        out[count++] = static_cast<uint32_t>(best);
-    };
-    take_best([&](const Vec3&) { return 0.0; });
-    for (size_t i = 1; i < points.size(); ++i)
-        if (points[i].depth > points[out[0]].depth)
-            out[0] = static_cast<uint32_t>(i);
-    const Vec3 p0 = flat(out[0]);
-    take_best([&](const Vec3& p) { return dot(p - p0, p - p0); });
-    const Vec3 p1 = flat(out[1]);
-    take_best([&](const Vec3& p) { return length(cross(p1 - p0, p - p0)); });
-    const Vec3 p2 = flat(out[2]);
-    take_best([&](const Vec3& p) {
-        return length(cross(p0 - p, p1 - p)) + length(cross(p1 - p, p2 - p)) + length(cross(p2 - p, p0 - p));
-    });
-    return count;
 }
 
 // One point's rows, not yet warm started.
