@@ -236,11 +236,13 @@ TEST(IslandThreads, ASplitIslandGivesTheSameHashForAnyThreadCountAndScheduler)
         EXPECT_EQ(run_block(threads, true).second, one) << threads << " threads";
     EXPECT_EQ(run_block(1, true, std::make_shared<ReverseOrderTasks>()).second, one);
     // The split solved the island in another order (else this test proves nothing), to the same
-    // physics: the top layer stands within 20 um of where it stands unsplit (the orders differ only in
-    // what the passes leave unconverged; measured 5 um), and within 2 mm of the packing's height (the
-    // walls' and neighbours' 0.5 mm overlaps push the layers up as they open).
+    // physics: the top layer stands within 0.1 mm of where it stands unsplit, and within 2 mm of the
+    // packing's height (the walls' and neighbours' 0.5 mm overlaps push the layers up as they open).
+    // The orders differ only in rounding and in what the passes leave unconverged, yet that moves the
+    // top by tens of um: the warm start alone taken in another order (forward, backward, by slab) put
+    // the split top 9, 5 and 32 um from the unsplit one (measured), a fortieth of the 1.3 mm it rises.
     const auto [top_whole, whole] = run_block(1, false);
     EXPECT_NE(whole, one);
-    EXPECT_NEAR(top, top_whole, 2e-5);
+    EXPECT_NEAR(top, top_whole, 1e-4);
     EXPECT_NEAR(top, 0.05 + 5 * 0.0995, 2e-3);
 }

@@ -467,6 +467,11 @@ void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Regist
     prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands, extra);
     split_large_islands(bodies, cw.split_islands, scratch);
     const size_t total = n + extra.count;
+    if (extra.warm_start != nullptr && extra.count > 0)
+        run_islands(par, scratch, total, 1, [&](uint32_t i) {
+            if (i >= n)
+                extra.warm_start(extra.ctx, i - n);
+        });
     if (n > 0) // the warm start first, on every island
         run_islands(par, scratch, total, 1, [&](uint32_t i) {
             if (i < n && rows[i].active)

@@ -47,6 +47,7 @@ struct ExtraRows {
     size_t count = 0;
     void (*nodes)(void* ctx, size_t i, uint32_t& out_a, uint32_t& out_b) = nullptr;
     void (*solve)(void* ctx, size_t i) = nullptr;
+    void (*warm_start)(void* ctx, size_t i) = nullptr; ///< Optional; runs before the rows' own.
     void* ctx = nullptr;
 };
 

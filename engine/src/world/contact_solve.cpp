@@ -329,9 +329,10 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
     note_pair_freedom(sp, rows);
 }
 
-// The pair's springs and warm start: its last normal load shared by the points' weights, its friction
-// and rolling loads likewise, turned into today's contact plane.
-void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
+// The pair's springs and last loads: its last normal load shared by the points' weights, its friction
+// and rolling loads likewise, turned into today's contact plane. Writes the pair's rows alone; the
+// loads reach the bodies in warm_start_soft_pair.
+void load_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
 {
     const BodyPair& pair = cw.pairs[sp.pair];
     const BodyModel& ma = reg.get<BodyModel>(pair.a);
@@ -340,9 +341,9 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
     const double omega = pair_omega(def.soft, h, ma.inv_mass == 0.0 || mb.inv_mass == 0.0);
     const PairAnchor* old = find_pair_anchor(cw.anchors, pair.key());
     const double w = 1.0 / sp.count; // the rows share the pair's last loads alike
+    sp.warm = old != nullptr;
     for (size_t i = 0; i < sp.count; ++i) {
         SoftPoint& p = rows.points[sp.first + i];
-        p.approach = dot(relative_velocity(p), p.normal); // after the warm starts of the pairs before
         if (old != nullptr)
             p.normal_impulse = w * h * old->normal_load;
         p.soft = point_soft(omega, def.soft.damping_ratio, h, p, rows.gravity);
@@ -350,7 +351,6 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
             continue;
         p.tangent_impulse[0] = w * h * dot(old->friction_load, p.tangent[0]);
         p.tangent_impulse[1] = w * h * dot(old->friction_load, p.tangent[1]);
-        apply_accumulated(p);
     }
     if (old != nullptr && sp.count > 0) {
         const Vec3 n = rows.points[sp.first].normal;
@@ -358,7 +358,7 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
     }
     if (sp.rolling <= 0.0 || sp.count == 0)
         return;
-    SoftPoint& first = rows.points[sp.first];
+    const SoftPoint& first = rows.points[sp.first];
     Mat3 mass;
     if (!invert(add_scaled(first.a.inv_inertia, first.b.inv_inertia, 1.0), mass))
         return;
@@ -366,8 +366,7 @@ void warm_start_pair(const ContactDef& def, Registry& reg, ContactWorld& cw, Sof
     if (old != nullptr) {
         const Vec3 n = first.normal;
         sp.roll_impulse = h * (old->roll_load - dot(old->roll_load, n) * n);
-        push_rigid_spin(first.a, sp.roll_impulse);
-        push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
+        sp.roll_warm = true;
     }
 }
 
@@ -568,37 +567,59 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     rows.points.resize(point_count);
     prepare_modal_substep(reg, ctx.h);
     // Each pair writes its own rows and only reads the bodies, so the pairs split across the threads
-    // with the same bits on any count; the warm start pushes the bodies, so it runs in pair order.
+    // with the same bits on any count; the warm start pushes the bodies, so it runs by island with the
+    // passes (warm_start_soft_pair).
     par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i)
             make_pair_rows(reg, io, rows.pairs[i], ctx.h);
     });
     scale_heavy_on_light(rows);
-    for (SoftPair& sp : rows.pairs)
-        warm_start_pair(def, reg, io, sp, ctx.h);
+    rows.take_approach = true;
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            load_pair(def, reg, io, rows.pairs[i], ctx.h);
+    });
 }
 
-void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io)
+void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     SoftContacts& rows = io.soft;
     io.contacts.clear();
     io.max_penetration = 0.0;
     prepare_modal_substep(reg, ctx.h);
-    for (SoftPair& sp : rows.pairs) {
-        const BodyPair& pair = io.pairs[sp.pair];
-        sp.sliding = false;
-        note_pair_freedom(sp, rows);
-        for (uint32_t i = 0; i < sp.count; ++i) {
-            SoftPoint& p = rows.points[sp.first + i];
-            if (p.a.modal.active() || p.b.modal.active())
-                remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
+    rows.take_approach = false; // the approach stays the narrowphase substep's
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+            SoftPair& sp = rows.pairs[k];
+            const BodyPair& pair = io.pairs[sp.pair];
+            sp.sliding = false;
+            sp.warm = true;
+            sp.roll_warm = sp.count > 0 && sp.rolling > 0.0;
+            note_pair_freedom(sp, rows);
+            for (uint32_t i = 0; i < sp.count; ++i) {
+                SoftPoint& p = rows.points[sp.first + i];
+                if (p.a.modal.active() || p.b.modal.active())
+                    remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
+            }
+        }
+    });
+}
+
+void warm_start_soft_pair(void* ctx, size_t i)
+{
+    SoftContacts& rows = *static_cast<SoftContacts*>(ctx);
+    SoftPair& sp = rows.pairs[i];
+    for (uint32_t k = 0; k < sp.count; ++k) {
+        SoftPoint& p = rows.points[sp.first + k];
+        if (rows.take_approach)
+            p.approach = dot(relative_velocity(p), p.normal); // after the warm starts of the rows before
+        if (sp.warm)
             apply_accumulated(p);
-        }
-        if (sp.count > 0 && sp.rolling > 0.0) {
-            SoftPoint& first = rows.points[sp.first];
-            push_rigid_spin(first.a, sp.roll_impulse);
-            push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
-        }
+    }
+    if (sp.roll_warm) {
+        SoftPoint& first = rows.points[sp.first];
+        push_rigid_spin(first.a, sp.roll_impulse);
+        push_rigid_spin(first.b, -1.0 * sp.roll_impulse);
     }
 }
 
@@ -623,7 +644,11 @@ ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias)
         auto& rows = *static_cast<SoftContacts*>(ctx);
         solve_pair(rows.pairs[i], rows, false);
     };
-    return {.count = rows.pairs.size(), .nodes = nodes, .solve = use_bias ? +biased : +relaxed, .ctx = &rows};
+    return {.count = rows.pairs.size(),
+            .nodes = nodes,
+            .solve = use_bias ? +biased : +relaxed,
+            .warm_start = use_bias ? &warm_start_soft_pair : nullptr,
+            .ctx = &rows};
 }
 
 void advance_soft_separations(SoftContacts& io)

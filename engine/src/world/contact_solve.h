@@ -62,6 +62,8 @@ struct SoftPair {
     bool rigid = false;     ///< It has points and none has a modal side (the rows' direct path).
     bool free_a = false;    ///< a is dynamic and not frozen (the direct path's check, kept here so a
     bool free_b = false;    ///< pass does not read the body models); the same for b.
+    bool warm = false;      ///< The warm start applies the points' impulses (the pair has last loads).
+    bool roll_warm = false; ///< ... and roll_impulse.
 };
 
 /// The soft solver's rows of one substep (scratch of ContactWorld).
@@ -74,18 +76,23 @@ struct SoftContacts {
     double restitution_speed = 0.0;     ///< [m/s].
     double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
     Vec3 up{};                          ///< −g/|g|, zero without gravity.
+    bool take_approach = false;         ///< The warm start notes each point's approach speed.
     std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
 };
 
-/// Rows from this substep's points, warm started (their impulses already applied to the bodies).
+/// Rows from this substep's points with their last loads; the loads reach the bodies in the warm start
+/// of the rows (soft_contact_rows' warm_start, run by island before the passes).
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
                            ContactWorld& io);
 /// Which bodies of the rows are still free to move, asked again after a body froze (freeze_non_finite).
 void note_frozen_bodies(SoftContacts& io);
 /// A solver substep on the last substep's rows (no narrowphase between): their gaps as the bodies moved
-/// them, their impulses applied again as the warm start; a modal side is made anew for this substep.
-void refresh_soft_contacts(const StepContext& ctx, Registry& reg, ContactWorld& io);
+/// them, their impulses to be applied again by the warm start; a modal side is made anew for this substep.
+void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io);
+/// Pair i's warm start: its accumulated impulses on its bodies (and, after a narrowphase, each point's
+/// approach speed first).
+void warm_start_soft_pair(void* rows, size_t i);
 /// The rows as the constraint solver's extra rows (one per pair), with or without the push-out.
 [[nodiscard]] ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias);
 /// Pair i's bounce (see restitute_soft_contacts), for solve_extra_rows.

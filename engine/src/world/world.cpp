@@ -216,7 +216,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
     const uint64_t frozen = warnings.non_finite_bodies;
     run(Stage::PenaltyForces, [&] {
         if (reuse)
-            refresh_soft_contacts(ctx, reg, contact);
+            refresh_soft_contacts(ctx, parallel, reg, contact);
         else
             prepare_soft_contacts(def.contact, ctx, parallel, reg, contact);
         constraints.iterations = std::max(def.constraint_iterations, def.contact.soft.iterations);
