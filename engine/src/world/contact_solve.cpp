@@ -573,7 +573,7 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
         for (size_t i = begin; i < end; ++i)
             make_pair_rows(reg, io, rows.pairs[i], ctx.h);
     });
-    scale_heavy_on_light(rows);
+    scale_heavy_on_light(par, rows);
     rows.take_approach = true;
     par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i)
@@ -651,35 +651,50 @@ ExtraRows soft_contact_rows(SoftContacts& rows, bool use_bias)
             .ctx = &rows};
 }
 
-void advance_soft_separations(SoftContacts& io)
+namespace
+{
+
+// The pair's points' gaps as the bodies moved them, and its slip while it sticks.
+void advance_pair(SoftPair& sp, SoftContacts& io)
 {
     // The points moved with the solved velocities over the substep; the rotation's change of the lever
     // arms is second order in h.
-    for (SoftPoint& p : io.points)
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        SoftPoint& p = io.points[sp.first + i];
         p.separation += io.h * dot(relative_velocity(p), p.normal);
-    for (SoftPair& sp : io.pairs) {
-        // A pair slides when its friction as a whole reached μ times its normal load: one corner at its
-        // disc (a rocking face unloads a corner) is not the face sliding, and forgetting the stick then
-        // let a block pulled well under μ·m·g creep at 0.27 mm/s (measured). Pairs with a modal body keep
-        // the point's rule: with the pair's, an elastic block pressed straight down slid 0.14 mm, not 0.05.
-        if (sp.sliding && sp.rigid) {
-            double normal = 0.0;
-            Vec3 friction{};
-            pair_impulses(sp, io, normal, friction);
-            sp.sliding = length(friction) >= k_pair_slide_fraction * sp.friction * normal;
-        }
-        if (sp.sliding) {
-            sp.stick = Vec3{}; // it slid: static friction starts again from here
-            continue;
-        }
-        Vec3 slip{};
-        for (uint32_t i = 0; i < sp.count; ++i) {
-            const SoftPoint& p = io.points[sp.first + i];
-            const Vec3 v = rigid_relative_velocity(p);
-            slip += (io.h / sp.count) * (v - dot(v, p.normal) * p.normal);
-        }
-        sp.stick += slip;
     }
+    // A pair slides when its friction as a whole reached μ times its normal load: one corner at its
+    // disc (a rocking face unloads a corner) is not the face sliding, and forgetting the stick then
+    // let a block pulled well under μ·m·g creep at 0.27 mm/s (measured). Pairs with a modal body keep
+    // the point's rule: with the pair's, an elastic block pressed straight down slid 0.14 mm, not 0.05.
+    if (sp.sliding && sp.rigid) {
+        double normal = 0.0;
+        Vec3 friction{};
+        pair_impulses(sp, io, normal, friction);
+        sp.sliding = length(friction) >= k_pair_slide_fraction * sp.friction * normal;
+    }
+    if (sp.sliding) {
+        sp.stick = Vec3{}; // it slid: static friction starts again from here
+        return;
+    }
+    Vec3 slip{};
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        const SoftPoint& p = io.points[sp.first + i];
+        const Vec3 v = rigid_relative_velocity(p);
+        slip += (io.h / sp.count) * (v - dot(v, p.normal) * p.normal);
+    }
+    sp.stick += slip;
+}
+
+} // namespace
+
+void advance_soft_separations(const Parallel& par, SoftContacts& io)
+{
+    // Each pair reads the bodies and writes its own rows: any threads, the same bits.
+    par.for_parts(io.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            advance_pair(io.pairs[i], io);
+    });
 }
 
 void restitute_soft_pair(void* rows, size_t pair)
@@ -703,28 +718,37 @@ void restitute_soft_pair(void* rows, size_t pair)
     }
 }
 
-void finish_soft_contacts(const StepContext& ctx, ContactWorld& io)
+void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io)
 {
-    const SoftContacts& rows = io.soft;
+    SoftContacts& rows = io.soft;
     std::vector<PairAnchor>& anchors = io.next_anchors;
-    anchors.clear();
-    for (const SoftPair& sp : rows.pairs) {
-        const BodyPair& pair = io.pairs[sp.pair];
-        double normal = 0.0;
-        Vec3 friction{};
-        const ContactInfo info = pair_info(pair, sp, rows, normal, friction);
-        PairAnchor anchor{.key = pair.key()};
-        anchor.normal_load = normal / ctx.h;
-        anchor.friction_load = friction / ctx.h;
-        anchor.roll_load = sp.roll_impulse / ctx.h;
-        anchor.spring = sp.stick;
-        anchors.push_back(anchor);
+    // The pairs' sums on the threads (each writes its own slots), then the lists in pair order.
+    anchors.resize(rows.pairs.size());
+    rows.infos.resize(rows.pairs.size());
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const SoftPair& sp = rows.pairs[i];
+            const BodyPair& pair = io.pairs[sp.pair];
+            double normal = 0.0;
+            Vec3 friction{};
+            rows.infos[i] = pair_info(pair, sp, rows, normal, friction);
+            PairAnchor& anchor = anchors[i];
+            anchor = PairAnchor{.key = pair.key()};
+            anchor.normal_load = normal / ctx.h;
+            anchor.friction_load = friction / ctx.h;
+            anchor.roll_load = sp.roll_impulse / ctx.h;
+            anchor.spring = sp.stick;
+        }
+    });
+    for (size_t i = 0; i < rows.pairs.size(); ++i) {
+        const ContactInfo& info = rows.infos[i];
+        const double normal_force = anchors[i].normal_load;
         // Speculative rows alone (a gap, no push) are not a contact: no events, not in the list.
-        if (!(info.depth > 0.0) && normal == 0.0)
+        if (!(info.depth > 0.0) && normal_force == 0.0)
             continue;
         io.contacts.push_back(info);
         io.max_penetration = std::max(io.max_penetration, info.depth);
-        accumulate_touch(io.events, sp.pair, info, normal / ctx.h, ctx.h);
+        accumulate_touch(io.events, rows.pairs[i].pair, info, normal_force, ctx.h);
     }
     io.anchors.swap(anchors);
 }

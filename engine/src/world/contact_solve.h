@@ -15,6 +15,7 @@
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
 
+#include <array>
 #include <vector>
 
 namespace supermodal
@@ -79,6 +80,8 @@ struct SoftContacts {
     bool take_approach = false;         ///< The warm start notes each point's approach speed.
     std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
+    std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
+    std::vector<std::array<double, 2>> side_masses; ///< Per pair, a's and b's own mass along the normal [kg].
 };
 
 /// Rows from this substep's points with their last loads; the loads reach the bodies in the warm start
@@ -99,13 +102,13 @@ void warm_start_soft_pair(void* rows, size_t i);
 void restitute_soft_pair(void* rows, size_t i);
 /// After the positions moved with the solved velocities: each point's gap as it is now, and each
 /// sticking pair's slip.
-void advance_soft_separations(SoftContacts& io);
+void advance_soft_separations(const Parallel& par, SoftContacts& io);
 /// 1 / (d·K d) for an inverse-mass matrix K: the effective mass along the unit d [kg], 0 where K takes
 /// nothing along d.
 [[nodiscard]] double inverse_along(const Mat3& k, const Vec3& d);
 /// A point's effective masses: along the normal with the modes, in the contact plane without them.
 void set_point_masses(SoftPoint& p);
 /// The pairs' loads into their anchors (warm starting), contacts, events and the deepest overlap.
-void finish_soft_contacts(const StepContext& ctx, ContactWorld& io);
+void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io);
 
 } // namespace supermodal

@@ -4,6 +4,7 @@
 #include "contact/radix_sort.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace supermodal
@@ -84,11 +85,34 @@ std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector
 // per pass, 0.999 at 1000), so an impact is never stopped and the light body is squeezed out; scaled,
 // the pair converges like an equal-mass one. The lower body then carries the upper one as part of the
 // ground: it is pushed by the upper body's change of velocity, not its momentum.
-void scale_heavy_on_light(SoftContacts& rows)
+void scale_heavy_on_light(const Parallel& par, SoftContacts& rows)
 {
+    if (!(rows.gravity > 0.0))
+        return;
+    // Each body's own mass along the normal, per pair, on the threads: where no pair is far enough from
+    // equal masses to be scaled (a pile of like bodies), the contact graph is not walked at all.
+    std::vector<std::array<double, 2>>& masses = rows.side_masses;
+    masses.resize(rows.pairs.size());
+    std::vector<uint8_t> uneven(par.part_capacity(), 0);
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t part, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const SoftPair& sp = rows.pairs[i];
+            if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
+                continue;
+            const SoftPoint& first = rows.points[sp.first];
+            if (first.a.modal.active() || first.b.modal.active())
+                continue;
+            masses[i] = {side_mass_along(first.a, first.normal), side_mass_along(first.b, first.normal)};
+            const double high = std::max(masses[i][0], masses[i][1]);
+            const double low = std::min(masses[i][0], masses[i][1]);
+            if (!(high < k_heavy_mass_ratio * low))
+                uneven[part] = 1;
+        }
+    });
+    if (std::find(uneven.begin(), uneven.end(), 1) == uneven.end())
+        return; // no body rests on a much lighter one
     std::vector<uint32_t>& nodes = rows.nodes;
     nodes.clear();
-    bool stacked = false;
     for (const SoftPair& sp : rows.pairs) {
         if (sp.count == 0)
             continue;
@@ -96,16 +120,14 @@ void scale_heavy_on_light(SoftContacts& rows)
             nodes.push_back(sp.node_a);
         if (sp.node_b != k_no_node)
             nodes.push_back(sp.node_b);
-        stacked = stacked || (sp.node_a != k_no_node && sp.node_b != k_no_node);
     }
-    if (!stacked || !(rows.gravity > 0.0))
-        return; // no body rests on another
     radix_sort(nodes, rows.nodes_other, [](uint32_t n) { return uint64_t{n}; });
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     const std::vector<uint32_t> place = node_places(nodes);
     auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
     const std::vector<uint32_t> level = contact_levels(rows, nodes, place);
-    for (SoftPair& sp : rows.pairs) {
+    for (size_t k = 0; k < rows.pairs.size(); ++k) {
+        SoftPair& sp = rows.pairs[k];
         if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
             continue;
         const uint32_t la = level[id(sp.node_a)], lb = level[id(sp.node_b)];
@@ -115,8 +137,7 @@ void scale_heavy_on_light(SoftContacts& rows)
         const bool a_lower = la < lb;
         if (dot(first.normal, rows.up) * (a_lower ? -1.0 : 1.0) < k_heavy_min_uprightness)
             continue; // not resting on it: a body thrown against a light one keeps its momentum
-        const double ratio = side_mass_along(a_lower ? first.b : first.a, first.normal) /
-                             side_mass_along(a_lower ? first.a : first.b, first.normal);
+        const double ratio = a_lower ? masses[k][1] / masses[k][0] : masses[k][0] / masses[k][1];
         if (!(ratio >= k_heavy_mass_ratio) || !std::isfinite(ratio))
             continue;
         for (uint32_t i = 0; i < sp.count; ++i) {

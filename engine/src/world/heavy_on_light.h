@@ -3,6 +3,7 @@
 // converges on them like an equal-mass pair.
 #pragma once
 
+#include "core/parallel.h"
 #include "world/contact_solve.h"
 
 namespace supermodal
@@ -10,6 +11,6 @@ namespace supermodal
 
 /// Scales the lower body's inverse mass and inertia in the rows of each pair whose upper body (farther
 /// from the ground in the contact graph) is much heavier and rests on it (see heavy_on_light.cpp).
-void scale_heavy_on_light(SoftContacts& rows);
+void scale_heavy_on_light(const Parallel& par, SoftContacts& rows);
 
 } // namespace supermodal

@@ -230,7 +230,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         freeze_non_finite(ctx, Stage::IntegratePositions, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::PenaltyForces, [&] {
-        advance_soft_separations(contact.soft);
+        advance_soft_separations(parallel, contact.soft);
         if (warnings.non_finite_bodies != frozen)
             note_frozen_bodies(contact.soft);
         // The islands of the solve above: the relax and the bounce touch the same bodies.
@@ -242,7 +242,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         if (last)
             solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair,
                              &contact.soft);
-        finish_soft_contacts(ctx, contact);
+        finish_soft_contacts(ctx, parallel, contact);
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
