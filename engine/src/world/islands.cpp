@@ -169,13 +169,23 @@ uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) c
 
 void IslandSlabs::assign_slabs(int axis, size_t slabs)
 {
-    std::sort(m_keys.begin(), m_keys.end(), [axis](const Key& x, const Key& y) {
+    auto before = [axis](const Key& x, const Key& y) {
         const double cx = sort_coordinate(x.position, axis), cy = sort_coordinate(y.position, axis);
         return cx < cy || (cx == cy && x.node < y.node);
-    });
+    };
+    // Slab s holds the ranks [ceil(s·n/K), ceil((s+1)·n/K)) of the order above: each boundary found by
+    // selection in what is left, not a whole sort (the order is total, so the slabs are the same).
     const size_t n = m_keys.size();
-    for (size_t i = 0; i < n; ++i)
-        m_slab[m_keys[i].node] = static_cast<uint32_t>(i * slabs / n);
+    size_t begin = 0;
+    for (size_t slab = 0; slab < slabs; ++slab) {
+        const size_t end = ((slab + 1) * n + slabs - 1) / slabs;
+        if (end < n)
+            std::nth_element(m_keys.begin() + static_cast<std::ptrdiff_t>(begin),
+                             m_keys.begin() + static_cast<std::ptrdiff_t>(end), m_keys.end(), before);
+        for (size_t i = begin; i < end; ++i)
+            m_slab[m_keys[i].node] = static_cast<uint32_t>(slab);
+        begin = end;
+    }
 }
 
 uint32_t IslandSlabs::row_group(uint32_t row, const IslandBuilder& islands, size_t slabs) const
