@@ -1,5 +1,6 @@
 // Tests for engine/src/contact/broadphase.cpp.
 #include "contact/broadphase.h"
+#include "supermodal/tasks.h"
 
 #include <algorithm>
 #include <gtest/gtest.h>
@@ -47,6 +48,23 @@ TEST(Broadphase, MatchesBruteForceOnRandomBoxes)
         sm::find_overlapping_pairs(ps, scratch, pairs);
         EXPECT_EQ(pairs, brute_force(ps)) << "seed " << seed;
         EXPECT_FALSE(pairs.empty());
+    }
+}
+
+TEST(Broadphase, ThreadsFindTheSamePairs)
+{
+    // Enough boxes for several thread parts, some of them big (tested against all) and unbounded.
+    auto ps = random_boxes(3000, 11, 20.0, 0.5);
+    ps[5].box = {{-1e300, -1e300, -1e300}, {1e300, 0.0, 1e300}};
+    ps[17].box.max.x += 6.0;
+    const std::vector<sm::BodyPair> expected = brute_force(ps);
+    for (int threads : {2, 3, 8}) {
+        const std::shared_ptr<sm::TaskSystem> pool = sm::make_thread_pool(threads);
+        sm::BroadphaseScratch scratch;
+        std::vector<sm::BodyPair> pairs;
+        sm::find_overlapping_pairs(ps, scratch, pairs, sm::Parallel(pool.get()));
+        EXPECT_EQ(pairs, expected) << threads << " threads";
+        EXPECT_GT(sm::Parallel(pool.get()).part_count(ps.size(), 256), 1u); // the split is exercised
     }
 }
 

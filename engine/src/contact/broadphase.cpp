@@ -22,6 +22,9 @@ constexpr double k_cell_per_extent = 2.0;
 // test exact (it is monotone, so overlapping boxes still share a cell); far-out boxes only crowd
 // the boundary cells.
 constexpr int64_t k_coord_limit = (int64_t{1} << 20) - 1;
+// Fewest boxes (or cell entries) worth a thread part: a box's cells and tests are a few dozen
+// nanoseconds, and waking a worker costs microseconds.
+constexpr size_t k_min_boxes_per_part = 256;
 
 int64_t cell_coord(double x, double inv_cell)
 {
@@ -78,60 +81,110 @@ double grid_cell(std::span<const BroadphaseProxy> proxies, std::vector<double>& 
     return cell;
 }
 
+// Box i's entries, one per cell it covers; false if it is too big to bin.
+bool bin_box(const Aabb& b, uint32_t i, double inv_cell, double big_extent,
+             std::vector<BroadphaseScratch::Entry>& out)
+{
+    if (!(max_extent(b) <= big_extent) || !is_finite(b.min) || !is_finite(b.max))
+        return false;
+    const int64_t x0 = cell_coord(b.min.x, inv_cell), x1 = cell_coord(b.max.x, inv_cell);
+    const int64_t y0 = cell_coord(b.min.y, inv_cell), y1 = cell_coord(b.max.y, inv_cell);
+    const int64_t z0 = cell_coord(b.min.z, inv_cell), z1 = cell_coord(b.max.z, inv_cell);
+    for (int64_t x = x0; x <= x1; ++x)
+        for (int64_t y = y0; y <= y1; ++y)
+            for (int64_t z = z0; z <= z1; ++z)
+                out.push_back({cell_key(x, y, z), i});
+    return true;
+}
+
+// `parts` lists joined in part order into `out`.
+template <class T> void join_parts(std::vector<std::vector<T>>& parts, size_t count, std::vector<T>& out)
+{
+    size_t total = 0;
+    for (size_t p = 0; p < count; ++p)
+        total += parts[p].size();
+    out.clear();
+    out.reserve(total);
+    for (size_t p = 0; p < count; ++p)
+        out.insert(out.end(), parts[p].begin(), parts[p].end());
+}
+
 // One entry per (box, cell it covers), sorted by cell then proxy; boxes too big to bin go to `big`
-// (ascending).
-void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, BroadphaseScratch& io)
+// (ascending). The boxes split into ranges over the threads, joined in range order.
+void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, const Parallel& par,
+               BroadphaseScratch& io)
 {
     const double inv_cell = 1.0 / cell;
     const double big_extent = k_big_cells * cell;
-    io.entries.clear();
-    io.big.clear();
-    for (uint32_t i = 0; i < proxies.size(); ++i) {
-        const Aabb& b = proxies[i].box;
-        if (!(max_extent(b) <= big_extent) || !is_finite(b.min) || !is_finite(b.max)) {
-            io.big.push_back(i);
-            continue;
-        }
-        const int64_t x0 = cell_coord(b.min.x, inv_cell), x1 = cell_coord(b.max.x, inv_cell);
-        const int64_t y0 = cell_coord(b.min.y, inv_cell), y1 = cell_coord(b.max.y, inv_cell);
-        const int64_t z0 = cell_coord(b.min.z, inv_cell), z1 = cell_coord(b.max.z, inv_cell);
-        for (int64_t x = x0; x <= x1; ++x)
-            for (int64_t y = y0; y <= y1; ++y)
-                for (int64_t z = z0; z <= z1; ++z)
-                    io.entries.push_back({cell_key(x, y, z), i});
-    }
+    const size_t parts = par.part_count(proxies.size(), k_min_boxes_per_part);
+    io.part_entries.resize(std::max(io.part_entries.size(), parts));
+    io.part_big.resize(std::max(io.part_big.size(), parts));
+    par.for_parts(proxies.size(), k_min_boxes_per_part, [&](size_t part, size_t begin, size_t end) {
+        std::vector<BroadphaseScratch::Entry>& entries = io.part_entries[part];
+        entries.clear();
+        io.part_big[part].clear();
+        for (size_t i = begin; i < end; ++i)
+            if (!bin_box(proxies[i].box, static_cast<uint32_t>(i), inv_cell, big_extent, entries))
+                io.part_big[part].push_back(static_cast<uint32_t>(i));
+    });
+    join_parts(io.part_entries, parts, io.entries);
+    join_parts(io.part_big, parts, io.big);
     // By cell, then box: entries are made box by box, so their boxes already ascend and one stable
     // pass by cell sorts by both.
     radix_sort(io.entries, io.sorted_entries, [](const BroadphaseScratch::Entry& e) { return e.key; });
 }
 
-// Pairs within each cell; a pair sharing several cells is reported only in the cell holding the
-// corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap.
+// The pairs of one cell's entries [begin, end); a pair sharing several cells is reported only in the
+// cell holding the corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they
+// overlap.
+void pairs_in_cell(std::span<const BroadphaseProxy> proxies, std::span<const BroadphaseScratch::Entry> cell,
+                   double inv_cell, std::vector<BodyPair>& out_pairs)
+{
+    for (size_t i = 0; i < cell.size(); ++i) {
+        const BroadphaseProxy& p = proxies[cell[i].proxy];
+        for (size_t j = i + 1; j < cell.size(); ++j) {
+            const BroadphaseProxy& q = proxies[cell[j].proxy];
+            // The cheap tests of add_pair() first: most boxes sharing a cell do not overlap.
+            if (!may_pair(p, q) || !overlaps(p.box, q.box))
+                continue;
+            const uint64_t owner = cell_key(cell_coord(std::max(p.box.min.x, q.box.min.x), inv_cell),
+                                            cell_coord(std::max(p.box.min.y, q.box.min.y), inv_cell),
+                                            cell_coord(std::max(p.box.min.z, q.box.min.z), inv_cell));
+            if (owner == cell[0].key)
+                add_pair(p, q, out_pairs);
+        }
+    }
+}
+
+// The first entry of the cell holding entry i, or of the next cell: where a thread's range starts.
+size_t cell_start(std::span<const BroadphaseScratch::Entry> entries, size_t i)
+{
+    while (i > 0 && i < entries.size() && entries[i].key == entries[i - 1].key)
+        ++i;
+    return i;
+}
+
+// Pairs within each cell, the cells split into ranges over the threads (each range whole cells); the
+// parts' pairs joined in range order (the caller sorts them).
 void pairs_in_cells(std::span<const BroadphaseProxy> proxies,
-                    std::span<const BroadphaseScratch::Entry> entries, double cell,
-                    std::vector<BodyPair>& out_pairs)
+                    std::span<const BroadphaseScratch::Entry> entries, double cell, const Parallel& par,
+                    BroadphaseScratch& io, std::vector<BodyPair>& out_pairs)
 {
     const double inv_cell = 1.0 / cell;
-    for (size_t begin = 0; begin < entries.size();) {
-        size_t end = begin + 1;
-        while (end < entries.size() && entries[end].key == entries[begin].key)
-            ++end;
-        for (size_t i = begin; i < end; ++i) {
-            const BroadphaseProxy& p = proxies[entries[i].proxy];
-            for (size_t j = i + 1; j < end; ++j) {
-                const BroadphaseProxy& q = proxies[entries[j].proxy];
-                // The cheap tests of add_pair() first: most boxes sharing a cell do not overlap.
-                if (!may_pair(p, q) || !overlaps(p.box, q.box))
-                    continue;
-                const uint64_t owner = cell_key(cell_coord(std::max(p.box.min.x, q.box.min.x), inv_cell),
-                                                cell_coord(std::max(p.box.min.y, q.box.min.y), inv_cell),
-                                                cell_coord(std::max(p.box.min.z, q.box.min.z), inv_cell));
-                if (owner == entries[begin].key)
-                    add_pair(p, q, out_pairs);
-            }
+    const size_t parts = par.part_count(entries.size(), k_min_boxes_per_part);
+    io.part_pairs.resize(std::max(io.part_pairs.size(), parts));
+    par.for_parts(entries.size(), k_min_boxes_per_part, [&](size_t part, size_t begin, size_t end) {
+        std::vector<BodyPair>& pairs = io.part_pairs[part];
+        pairs.clear();
+        for (size_t first = cell_start(entries, begin), stop = cell_start(entries, end); first < stop;) {
+            size_t last = first + 1;
+            while (last < entries.size() && entries[last].key == entries[first].key)
+                ++last;
+            pairs_in_cell(proxies, entries.subspan(first, last - first), inv_cell, pairs);
+            first = last;
         }
-        begin = end;
-    }
+    });
+    join_parts(io.part_pairs, parts, out_pairs);
 }
 
 // Big boxes (planes, huge static bodies) against everything, each pair once.
@@ -152,14 +205,14 @@ void pairs_of_big(std::span<const BroadphaseProxy> proxies, std::span<const uint
 } // namespace
 
 void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, BroadphaseScratch& io_scratch,
-                            std::vector<BodyPair>& out_pairs)
+                            std::vector<BodyPair>& out_pairs, const Parallel& par)
 {
     out_pairs.clear();
     if (proxies.size() < 2)
         return;
     const double cell = grid_cell(proxies, io_scratch.extents);
-    bin_boxes(proxies, cell, io_scratch);
-    pairs_in_cells(proxies, io_scratch.entries, cell, out_pairs);
+    bin_boxes(proxies, cell, par, io_scratch);
+    pairs_in_cells(proxies, io_scratch.entries, cell, par, io_scratch, out_pairs);
     pairs_of_big(proxies, io_scratch.big, out_pairs);
     radix_sort(out_pairs, io_scratch.sorted_pairs, [](const BodyPair& p) { return p.key(); });
 }

@@ -6,6 +6,7 @@
 // them in the same order whatever the input order (determinism).
 #pragma once
 
+#include "core/parallel.h"
 #include "supermodal/entity.h"
 #include "supermodal/geometry.h"
 
@@ -47,16 +48,20 @@ struct BroadphaseScratch {
         uint64_t key;   ///< Packed cell coordinates.
         uint32_t proxy; ///< Index into the proxies.
     };
-    std::vector<Entry> entries;         ///< One per (box, cell it covers).
-    std::vector<Entry> sorted_entries;  ///< The sort's other buffer.
-    std::vector<BodyPair> sorted_pairs; ///< The pairs' sort's other buffer.
-    std::vector<uint32_t> big;          ///< Boxes tested against all, ascending.
-    std::vector<double> extents;        ///< For the median box size.
+    std::vector<Entry> entries;                    ///< One per (box, cell it covers).
+    std::vector<Entry> sorted_entries;             ///< The sort's other buffer.
+    std::vector<BodyPair> sorted_pairs;            ///< The pairs' sort's other buffer.
+    std::vector<uint32_t> big;                     ///< Boxes tested against all, ascending.
+    std::vector<double> extents;                   ///< For the median box size.
+    std::vector<std::vector<Entry>> part_entries;  ///< Per thread part: its boxes' entries.
+    std::vector<std::vector<uint32_t>> part_big;   ///< Per thread part: its boxes too big to bin.
+    std::vector<std::vector<BodyPair>> part_pairs; ///< Per thread part: its cells' pairs.
 };
 
-/// All pairs whose boxes overlap (touching counts), except static–static, sorted by key().
+/// All pairs whose boxes overlap (touching counts), except static–static, sorted by key(); the boxes
+/// and cells split over `par`'s threads (the same pairs on any count).
 void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, BroadphaseScratch& io_scratch,
-                            std::vector<BodyPair>& out_pairs);
+                            std::vector<BodyPair>& out_pairs, const Parallel& par = Parallel{});
 
 /// True if the two boxes overlap or touch, or come within `margin` [m] of each other.
 [[nodiscard]] inline bool overlaps(const Aabb& a, const Aabb& b, double margin = 0.0)

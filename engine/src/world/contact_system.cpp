@@ -140,8 +140,30 @@ bool reuse_body_box(const Pose& p, Entity e, const ContactWorld& io)
            std::memcmp(&orientation, &p.orientation, sizeof(Quat)) == 0;
 }
 
-// One broadphase proxy per body with a collider: its world box swept over the step.
-void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
+// Body e's broadphase proxy: its world box swept over the step (kept while it sleeps).
+BroadphaseProxy swept_proxy(const WorldDef& def, const Registry& reg, Entity e, const BodyModel& m,
+                            const Pose& p, const Velocity& v, ContactWorld& io)
+{
+    const Sleep* sleep = reg.find<Sleep>(e);
+    const bool asleep = m.motion == MotionType::Dynamic && sleep != nullptr && sleep->asleep;
+    uint8_t& set = io.sleep_box_set[e.index];
+    if (!asleep)
+        set = 0;
+    else if (set == 0) {
+        io.sleep_boxes[e.index] = swept_box(def, m, body_box(m, p), v);
+        set = 1;
+    }
+    const bool moving = m.motion == MotionType::Kinematic && (v.linear != Vec3{} || v.angular != Vec3{});
+    return {.entity = e,
+            .box = asleep ? io.sleep_boxes[e.index] : swept_box(def, m, keep_body_box(m, p, e, io), v),
+            .is_static = m.motion != MotionType::Dynamic,
+            .asleep = asleep,
+            .moving = moving};
+}
+
+// One broadphase proxy per body with a collider, in the body store's order: each body's on the
+// threads (it writes only its own slots), then the colliders' gathered.
+void add_swept_proxies(const WorldDef& def, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     const size_t slots = reg.pool().slot_count();
     io.sleep_boxes.resize(slots);
@@ -150,26 +172,22 @@ void add_swept_proxies(const WorldDef& def, Registry& reg, ContactWorld& io)
     io.box_poses.resize(slots);
     io.box_made_by.resize(slots, 0);
     ++io.broadphase_count;
-    reg.each<BodyModel, Pose, Velocity>([&](Entity e, const BodyModel& m, const Pose& p, const Velocity& v) {
-        if (!m.collider)
-            return;
-        const Sleep* sleep = reg.find<Sleep>(e);
-        const bool asleep = m.motion == MotionType::Dynamic && sleep != nullptr && sleep->asleep;
-        uint8_t& set = io.sleep_box_set[e.index];
-        if (!asleep)
-            set = 0;
-        else if (set == 0) {
-            io.sleep_boxes[e.index] = swept_box(def, m, body_box(m, p), v);
-            set = 1;
+    const std::vector<Entity>& bodies = reg.store<BodyModel>().entities();
+    io.body_proxies.resize(bodies.size());
+    par.for_parts(bodies.size(), k_min_bodies_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const Entity e = bodies[i];
+            const BodyModel& m = reg.store<BodyModel>().values()[i];
+            const Pose* p = reg.find<Pose>(e);
+            const Velocity* v = reg.find<Velocity>(e);
+            io.body_proxies[i].entity = Entity{}; // no proxy
+            if (m.collider && p != nullptr && v != nullptr)
+                io.body_proxies[i] = swept_proxy(def, reg, e, m, *p, *v, io);
         }
-        const bool moving = m.motion == MotionType::Kinematic && (v.linear != Vec3{} || v.angular != Vec3{});
-        io.proxies.push_back(
-            {.entity = e,
-             .box = asleep ? io.sleep_boxes[e.index] : swept_box(def, m, keep_body_box(m, p, e, io), v),
-             .is_static = m.motion != MotionType::Dynamic,
-             .asleep = asleep,
-             .moving = moving});
     });
+    for (const BroadphaseProxy& proxy : io.body_proxies)
+        if (!proxy.entity.is_null())
+            io.proxies.push_back(proxy);
 }
 
 // Drops the broadphase's pairs that cannot touch: excluded ones, and bodies whose swept box stays
@@ -241,7 +259,7 @@ const PairAnchor* find_pair_anchor(const std::vector<PairAnchor>& anchors, uint6
     return it != anchors.end() && it->key == key ? &*it : nullptr;
 }
 
-int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
+int update_pairs(const WorldDef& def, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     io.proxies.clear();
     io.pairs.clear();
@@ -257,12 +275,12 @@ int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io)
     do {
         io.proxies.clear();
         io.pairs.clear();
-        add_swept_proxies(def, reg, io);
+        add_swept_proxies(def, par, reg, io);
         // Nothing awake or moving: no pair can matter (a scene that has all gone to sleep).
         if (std::none_of(io.proxies.begin(), io.proxies.end(),
                          [](const BroadphaseProxy& x) { return (!x.is_static && !x.asleep) || x.moving; }))
             break;
-        find_overlapping_pairs(io.proxies, io.broadphase, io.pairs);
+        find_overlapping_pairs(io.proxies, io.broadphase, io.pairs, par);
         drop_pairs_apart(reg, io);
     } while (settle_sleeping_pairs(reg, io));
     begin_step_events(io.events, io.pairs.size());

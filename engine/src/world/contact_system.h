@@ -43,18 +43,19 @@ struct ParkedContacts {
 
 /// Contact data of a world: state (anchors), derived (pairs, points, contacts), scratch.
 struct ContactWorld {
-    std::vector<PairAnchor> anchors;         ///< State: sorted by key; hashed and snapshotted.
-    std::vector<PairManifold> manifolds;     ///< State: support-map pairs' points, sorted by key.
-    std::vector<PairManifold> pair_manifold; ///< Scratch: per pair, its manifold this substep.
-    std::vector<PairManifold> old_manifolds; ///< Scratch: last substep's, read while making new ones.
-    std::vector<PairAnchor> next_anchors;    ///< Scratch: this substep's anchors while they are made.
-    std::vector<QueryCost> pair_cost;        ///< Scratch: per pair, its support-map work this substep.
-    uint64_t support_calls = 0;              ///< Derived: support-map evaluations over this step [-].
-    uint64_t touching_pairs = 0;             ///< Derived: pairs with points, summed over substeps [-].
-    uint64_t touching_support_calls = 0;     ///< Derived: the part of support_calls those pairs made [-].
-    std::vector<uint64_t> excluded_pairs;    ///< Input: sorted keys (lo << 32 | hi) never colliding.
-    std::vector<BroadphaseProxy> proxies;    ///< Scratch.
-    std::vector<Aabb> boxes;                 ///< Scratch: world box per entity index [m].
+    std::vector<PairAnchor> anchors;           ///< State: sorted by key; hashed and snapshotted.
+    std::vector<PairManifold> manifolds;       ///< State: support-map pairs' points, sorted by key.
+    std::vector<PairManifold> pair_manifold;   ///< Scratch: per pair, its manifold this substep.
+    std::vector<PairManifold> old_manifolds;   ///< Scratch: last substep's, read while making new ones.
+    std::vector<PairAnchor> next_anchors;      ///< Scratch: this substep's anchors while they are made.
+    std::vector<QueryCost> pair_cost;          ///< Scratch: per pair, its support-map work this substep.
+    uint64_t support_calls = 0;                ///< Derived: support-map evaluations over this step [-].
+    uint64_t touching_pairs = 0;               ///< Derived: pairs with points, summed over substeps [-].
+    uint64_t touching_support_calls = 0;       ///< Derived: the part of support_calls those pairs made [-].
+    std::vector<uint64_t> excluded_pairs;      ///< Input: sorted keys (lo << 32 | hi) never colliding.
+    std::vector<BroadphaseProxy> proxies;      ///< Scratch.
+    std::vector<BroadphaseProxy> body_proxies; ///< Scratch: per body of the store, its proxy or none.
+    std::vector<Aabb> boxes;                   ///< Scratch: world box per entity index [m].
     /// Scratch: per entity index, the pose its box was made at and the broadphase that made it, so the
     /// narrowphase right after takes the broadphase's boxes instead of three more support calls each.
     std::vector<std::pair<Vec3, Quat>> box_poses;
@@ -97,7 +98,8 @@ struct ContactWorld {
 /// Broadphase over boxes swept by each body's motion over dt; returns the substep count needed so that
 /// no body moves more than ContactDef::speculative_speed_factor of a partner's thickness per substep.
 /// Also starts the step's event accumulators.
-[[nodiscard]] int update_pairs(const WorldDef& def, Registry& reg, ContactWorld& io_contact);
+[[nodiscard]] int update_pairs(const WorldDef& def, const Parallel& par, Registry& reg,
+                               ContactWorld& io_contact);
 /// Narrowphase for this substep's poses.
 void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io_contact);
 /// Makes the next narrowphase query every awake pair of `body` afresh (its surface changed): none reuses

@@ -137,7 +137,7 @@ void World::Impl::step()
     run(Stage::Broadphase, [&] {
         non_colliding_pairs(constraints, contact.excluded_pairs);
         wake_jointed(constraints, reg, contact);
-        substeps = update_pairs(def, reg, contact);
+        substeps = update_pairs(def, parallel, reg, contact);
         profile.pair_count = contact.pairs.size();
     });
     // Modal bodies that just joined a pair get their deformed samples before the narrowphase reads them.
