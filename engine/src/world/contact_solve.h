@@ -15,7 +15,6 @@
 #include "world/constraint_side.h"
 #include "world/constraint_system.h"
 
-#include <array>
 #include <vector>
 
 namespace supermodal
@@ -81,7 +80,6 @@ struct SoftContacts {
     std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
     std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
-    std::vector<std::array<double, 2>> side_masses; ///< Per pair, a's and b's own mass along the normal [kg].
 };
 
 /// Rows from this substep's points with their last loads; the loads reach the bodies in the warm start

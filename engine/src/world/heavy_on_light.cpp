@@ -4,7 +4,6 @@
 #include "contact/radix_sort.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 namespace supermodal
@@ -75,6 +74,38 @@ std::vector<uint32_t> contact_levels(const SoftContacts& rows, const std::vector
     return level;
 }
 
+// A rigid side's own mass along d at its anchor [kg]: side_mass_along's value without the matrix,
+// 1 / (1/m + (r×d)·I⁻¹(r×d)), equal to it up to rounding.
+double rigid_mass_along(const Side& s, const Vec3& d)
+{
+    const Vec3 arm = cross(s.r, d);
+    const double w = s.inv_mass + dot(arm, s.inv_inertia * arm);
+    return w > 0.0 ? 1.0 / w : 0.0;
+}
+
+// Whether any pair of two moving rigid bodies has masses along its normal near k_heavy_mass_ratio apart
+// or more (a slack of 1e-9 over the rounding between the two formulas), on the threads: a pile of like
+// bodies has none, and skips the rest.
+bool any_uneven_pair(const Parallel& par, const SoftContacts& rows)
+{
+    std::vector<uint8_t> uneven(par.part_capacity(), 0);
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t part, size_t begin, size_t end) {
+        for (size_t i = begin; i < end && uneven[part] == 0; ++i) {
+            const SoftPair& sp = rows.pairs[i];
+            if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
+                continue;
+            const SoftPoint& first = rows.points[sp.first];
+            if (first.a.modal.active() || first.b.modal.active())
+                continue;
+            const double ma = rigid_mass_along(first.a, first.normal);
+            const double mb = rigid_mass_along(first.b, first.normal);
+            if (!(std::max(ma, mb) < (1.0 - 1e-9) * k_heavy_mass_ratio * std::min(ma, mb)))
+                uneven[part] = 1;
+        }
+    });
+    return std::find(uneven.begin(), uneven.end(), 1) != uneven.end();
+}
+
 } // namespace
 
 // Heavy on light: a pair whose upper body (the one farther from the ground in the contact graph, and
@@ -89,28 +120,8 @@ void scale_heavy_on_light(const Parallel& par, SoftContacts& rows)
 {
     if (!(rows.gravity > 0.0))
         return;
-    // Each body's own mass along the normal, per pair, on the threads: where no pair is far enough from
-    // equal masses to be scaled (a pile of like bodies), the contact graph is not walked at all.
-    std::vector<std::array<double, 2>>& masses = rows.side_masses;
-    masses.resize(rows.pairs.size());
-    std::vector<uint8_t> uneven(par.part_capacity(), 0);
-    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t part, size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const SoftPair& sp = rows.pairs[i];
-            if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
-                continue;
-            const SoftPoint& first = rows.points[sp.first];
-            if (first.a.modal.active() || first.b.modal.active())
-                continue;
-            masses[i] = {side_mass_along(first.a, first.normal), side_mass_along(first.b, first.normal)};
-            const double high = std::max(masses[i][0], masses[i][1]);
-            const double low = std::min(masses[i][0], masses[i][1]);
-            if (!(high < k_heavy_mass_ratio * low))
-                uneven[part] = 1;
-        }
-    });
-    if (std::find(uneven.begin(), uneven.end(), 1) == uneven.end())
-        return; // no body rests on a much lighter one
+    if (!any_uneven_pair(par, rows))
+        return; // no body rests on a much lighter one: the contact graph is not walked
     std::vector<uint32_t>& nodes = rows.nodes;
     nodes.clear();
     for (const SoftPair& sp : rows.pairs) {
@@ -126,8 +137,7 @@ void scale_heavy_on_light(const Parallel& par, SoftContacts& rows)
     const std::vector<uint32_t> place = node_places(nodes);
     auto id = [&](uint32_t node) { return static_cast<size_t>(place[node]); };
     const std::vector<uint32_t> level = contact_levels(rows, nodes, place);
-    for (size_t k = 0; k < rows.pairs.size(); ++k) {
-        SoftPair& sp = rows.pairs[k];
+    for (SoftPair& sp : rows.pairs) {
         if (sp.count == 0 || sp.node_a == k_no_node || sp.node_b == k_no_node)
             continue;
         const uint32_t la = level[id(sp.node_a)], lb = level[id(sp.node_b)];
@@ -137,7 +147,8 @@ void scale_heavy_on_light(const Parallel& par, SoftContacts& rows)
         const bool a_lower = la < lb;
         if (dot(first.normal, rows.up) * (a_lower ? -1.0 : 1.0) < k_heavy_min_uprightness)
             continue; // not resting on it: a body thrown against a light one keeps its momentum
-        const double ratio = a_lower ? masses[k][1] / masses[k][0] : masses[k][0] / masses[k][1];
+        const double ratio = side_mass_along(a_lower ? first.b : first.a, first.normal) /
+                             side_mass_along(a_lower ? first.a : first.b, first.normal);
         if (!(ratio >= k_heavy_mass_ratio) || !std::isfinite(ratio))
             continue;
         for (uint32_t i = 0; i < sp.count; ++i) {
