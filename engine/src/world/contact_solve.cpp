@@ -538,6 +538,23 @@ void set_point_masses(SoftPoint& p)
     p.tangent_mass[1] = inverse_along(kt, p.tangent[1]);
 }
 
+namespace
+{
+
+// How many rows pair pi may take: none without points or without a body that can move.
+size_t pair_row_count(const Registry& reg, const ContactWorld& io, size_t pi)
+{
+    const BodyPair& pair = io.pairs[pi];
+    const bool modal = reg.find<ModalBody>(pair.a) != nullptr || reg.find<ModalBody>(pair.b) != nullptr;
+    const size_t n =
+        std::min(io.points_of(pi).size(), modal ? k_max_rows_per_modal_pair : k_max_rows_per_pair);
+    if (n == 0 || !(reg.get<BodyModel>(pair.a).inv_mass + reg.get<BodyModel>(pair.b).inv_mass > 0.0))
+        return 0;
+    return n;
+}
+
+} // namespace
+
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
                            ContactWorld& io)
 {
@@ -550,19 +567,22 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     rows.pairs.clear();
     io.contacts.clear();
     io.max_penetration = 0.0;
-    // A pair takes rows when it has points and something that can move.
+    // A pair takes rows when it has points and something that can move: each pair's count on the
+    // threads, then the pairs with rows in pair order.
+    std::vector<uint32_t>& counts = rows.pair_rows;
+    counts.resize(io.pairs.size());
+    par.for_parts(io.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
+        for (size_t pi = begin; pi < end; ++pi)
+            counts[pi] = static_cast<uint32_t>(pair_row_count(reg, io, pi));
+    });
     size_t point_count = 0;
     for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
-        const BodyPair& pair = io.pairs[pi];
-        const bool modal = reg.find<ModalBody>(pair.a) != nullptr || reg.find<ModalBody>(pair.b) != nullptr;
-        const size_t n =
-            std::min(io.points_of(pi).size(), modal ? k_max_rows_per_modal_pair : k_max_rows_per_pair);
-        if (n == 0 || !(reg.get<BodyModel>(pair.a).inv_mass + reg.get<BodyModel>(pair.b).inv_mass > 0.0))
+        if (counts[pi] == 0)
             continue;
         rows.pairs.push_back({.pair = static_cast<uint32_t>(pi),
                               .first = static_cast<uint32_t>(point_count),
-                              .count = static_cast<uint32_t>(n)});
-        point_count += n;
+                              .count = counts[pi]});
+        point_count += counts[pi];
     }
     rows.points.resize(point_count);
     prepare_modal_substep(reg, ctx.h);

@@ -79,6 +79,7 @@ struct SoftContacts {
     bool take_approach = false;         ///< The warm start notes each point's approach speed.
     std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
+    std::vector<uint32_t> pair_rows;   ///< Per pair of ContactWorld::pairs, the rows it may take (scratch).
     std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
 };
 
