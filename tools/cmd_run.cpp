@@ -258,6 +258,7 @@ nlohmann::json run_summary(const RunOptions& opt, const World& world, long long 
             {"dt", world.settings().dt},
             {"substeps", world.settings().substep_count},
             {"threads", world.settings().thread_count},
+            {"split_islands", world.settings().split_islands},
             {"body_count", bodies.size()},
             {"sleeping", world_sleeping_count(world)}, // bodies asleep at the end
             {"state_hash", hex(world.state_hash())},

@@ -237,6 +237,17 @@ TEST(Cli, DemoSceneRuns)
     EXPECT_EQ(nlohmann::json::parse(o.output)["sleeping"], 0); // nothing rests yet after 0.2 s
 }
 
+TEST(Cli, TheSummaryEchoesTheIslandSplit)
+{
+    nlohmann::json demo = read_json(std::string(SM_SOURCE_DIR) + "/samples/demo.json");
+    demo["settings"]["split_islands"] = true;
+    const auto dir = temp_dir("split");
+    std::ofstream(dir / "split.json") << demo.dump();
+    const Outcome o = run_cli("run " + (dir / "split.json").string() + " --steps 2");
+    ASSERT_EQ(o.status, 0) << o.output;
+    EXPECT_EQ(nlohmann::json::parse(o.output)["split_islands"], true);
+}
+
 TEST(Cli, ThreadsGiveTheSameHashAndContactsAreReported)
 {
     // The demo lands three bodies on the ground within 1000 steps (2 s).
@@ -249,6 +260,7 @@ TEST(Cli, ThreadsGiveTheSameHashAndContactsAreReported)
     EXPECT_EQ(s1["state_hash"], s2["state_hash"]);
     EXPECT_EQ(s1["threads"], 1);
     EXPECT_EQ(s2["threads"], 2);
+    EXPECT_EQ(s1["split_islands"], false);
     const auto& c = s1["contact"];
     EXPECT_GE(c["contacts"].get<int>(), 1);
     EXPECT_GE(c["begin_events"].get<int>(), c["end_events"].get<int>());
