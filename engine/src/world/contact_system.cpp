@@ -190,32 +190,45 @@ void add_swept_proxies(const WorldDef& def, const Parallel& par, Registry& reg, 
             io.proxies.push_back(proxy);
 }
 
-// Drops the broadphase's pairs that cannot touch: excluded ones, and bodies whose swept box stays
-// above a plane they were paired with.
-void drop_pairs_apart(const Registry& reg, ContactWorld& io)
+// Whether a broadphase pair cannot touch: excluded, or a body whose swept box stays above a plane it
+// was paired with.
+bool pair_apart(const Registry& reg, const ContactWorld& io, const BodyPair& pair)
 {
-    if (!io.excluded_pairs.empty()) // jointed parts and parent–child pairs
-        std::erase_if(io.pairs, [&](const BodyPair& pair) {
-            return std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), pair.key());
-        });
+    if (!io.excluded_pairs.empty() && // jointed parts and parent–child pairs
+        std::binary_search(io.excluded_pairs.begin(), io.excluded_pairs.end(), pair.key()))
+        return true;
     // A plane's box is unbounded, so the sweep pairs it with every body; keep only the bodies whose
     // swept box reaches into its half-space (else a pile in a box of planes runs five plane tests per
-    // body per substep for nothing).
+    // body per substep for nothing). A modal body's box is its rest shape's; its deformation may reach
+    // further, so its pairs stay.
+    if (reg.has<ModalBody>(pair.a) || reg.has<ModalBody>(pair.b))
+        return false;
+    const ShapeDef& sa = reg.get<BodyModel>(pair.a).shape;
+    const ShapeDef& sb = reg.get<BodyModel>(pair.b).shape;
+    if (sa.type == ShapeType::Plane)
+        return box_above_plane(io.swept[pair.b.index], sa);
+    if (sb.type == ShapeType::Plane)
+        return box_above_plane(io.swept[pair.a.index], sb);
+    return false;
+}
+
+// Drops the broadphase's pairs that cannot touch (pair_apart): each pair asked on the threads, the
+// rest kept in order.
+void drop_pairs_apart(const Registry& reg, const Parallel& par, ContactWorld& io)
+{
     io.swept.resize(reg.pool().slot_count());
     for (const BroadphaseProxy& proxy : io.proxies)
         io.swept[proxy.entity.index] = proxy.box;
-    std::erase_if(io.pairs, [&](const BodyPair& pair) {
-        // A modal body's box is its rest shape's; its deformation may reach further, so keep its pairs.
-        if (reg.has<ModalBody>(pair.a) || reg.has<ModalBody>(pair.b))
-            return false;
-        const ShapeDef& sa = reg.get<BodyModel>(pair.a).shape;
-        const ShapeDef& sb = reg.get<BodyModel>(pair.b).shape;
-        if (sa.type == ShapeType::Plane)
-            return box_above_plane(io.swept[pair.b.index], sa);
-        if (sb.type == ShapeType::Plane)
-            return box_above_plane(io.swept[pair.a.index], sb);
-        return false;
+    io.pair_apart.resize(io.pairs.size());
+    for_parts(par, io.pairs.size(), [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+            io.pair_apart[i] = pair_apart(reg, io, io.pairs[i]) ? 1 : 0;
     });
+    size_t kept = 0;
+    for (size_t i = 0; i < io.pairs.size(); ++i)
+        if (io.pair_apart[i] == 0)
+            io.pairs[kept++] = io.pairs[i];
+    io.pairs.resize(kept);
 }
 
 // Tunnelling rule: substep so that no pair closes by more than a fraction of the thinner body per
@@ -281,7 +294,7 @@ int update_pairs(const WorldDef& def, const Parallel& par, Registry& reg, Contac
                          [](const BroadphaseProxy& x) { return (!x.is_static && !x.asleep) || x.moving; }))
             break;
         find_overlapping_pairs(io.proxies, io.broadphase, io.pairs, par);
-        drop_pairs_apart(reg, io);
+        drop_pairs_apart(reg, par, io);
     } while (settle_sleeping_pairs(reg, io));
     begin_step_events(io.events, io.pairs.size());
     io.support_calls = 0;

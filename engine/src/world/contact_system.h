@@ -54,6 +54,7 @@ struct ContactWorld {
     uint64_t touching_support_calls = 0;       ///< Derived: the part of support_calls those pairs made [-].
     std::vector<uint64_t> excluded_pairs;      ///< Input: sorted keys (lo << 32 | hi) never colliding.
     std::vector<BroadphaseProxy> proxies;      ///< Scratch.
+    std::vector<uint8_t> pair_apart;           ///< Scratch: per broadphase pair, 1 if it cannot touch.
     std::vector<BroadphaseProxy> body_proxies; ///< Scratch: per body of the store, its proxy or none.
     std::vector<Aabb> boxes;                   ///< Scratch: world box per entity index [m].
     /// Scratch: per entity index, the pose its box was made at and the broadphase that made it, so the
