@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Builds the engine and the threaded tests (the contact thread pool's hash, partition and event tests,
-# the constraint islands, the chair and pile samples on 1 and 2 threads) with ThreadSanitizer in
-# build-tsan/ and runs them.
+# Builds the engine and the threaded tests (the broadphase on threads, the contact thread pool's hash,
+# partition and event tests, the constraint islands, the chair and pile samples on 1 and 2 threads)
+# with ThreadSanitizer in build-tsan/ and runs them.
 # Called by .ci/run after scripts/sanitize.sh (determinism across threads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
