@@ -97,12 +97,13 @@ bool bin_box(const Aabb& b, uint32_t i, double inv_cell, double big_extent,
     return true;
 }
 
-// The sorted lists parts[0, count) merged into `out` (`other` is scratch): stable, so of items equal
-// under `less` the earlier part's come first.
-template <class T, class Less>
+// The lists parts[0, count), each sorted by key(item), merged into `out` (`other` is scratch): stable,
+// so of items with equal keys the earlier part's come first.
+template <class T, class Key>
 void merge_parts(std::vector<std::vector<T>>& parts, size_t count, std::vector<T>& out, std::vector<T>& other,
-                 Less less)
+                 Key key)
 {
+    auto less = [key](const T& x, const T& y) { return key(x) < key(y); };
     if (count == 1) { // nothing to merge: the buffers trade places
         out.swap(parts[0]);
         return;
@@ -143,8 +144,7 @@ void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, const Para
         // pass by cell sorts by both.
         radix_sort(entries, io.part_other_entries[part], entry_key);
     });
-    merge_parts(io.part_entries, parts, io.entries, io.sorted_entries,
-                [](const auto& x, const auto& y) { return x.key < y.key; });
+    merge_parts(io.part_entries, parts, io.entries, io.sorted_entries, entry_key);
     io.big.clear();
     for (size_t p = 0; p < parts; ++p)
         io.big.insert(io.big.end(), io.part_big[p].begin(), io.part_big[p].end());
@@ -216,10 +216,13 @@ void find_pairs(std::span<const BroadphaseProxy> proxies, double cell, const Par
 {
     const double inv_cell = 1.0 / cell;
     const std::span<const BroadphaseScratch::Entry> entries = io.entries;
-    const size_t parts = par.part_count(entries.size() + proxies.size(), k_min_boxes_per_part);
+    // Each part takes its share of the cells and of the boxes the big ones are tested against, so its
+    // ranges come from `parts` itself (the same count for_parts splits `work` into).
+    const size_t work = entries.size() + proxies.size();
+    const size_t parts = par.part_count(work, k_min_boxes_per_part);
     io.part_pairs.resize(std::max(io.part_pairs.size(), parts));
     io.part_other_pairs.resize(std::max(io.part_other_pairs.size(), parts));
-    par.for_parts(entries.size() + proxies.size(), k_min_boxes_per_part, [&](size_t part, size_t, size_t) {
+    par.for_parts(work, k_min_boxes_per_part, [&](size_t part, size_t, size_t) {
         std::vector<BodyPair>& pairs = io.part_pairs[part];
         pairs.clear();
         pairs_in_range(proxies, entries, Parallel::part_begin(entries.size(), parts, part),
@@ -229,8 +232,7 @@ void find_pairs(std::span<const BroadphaseProxy> proxies, double cell, const Par
                          Parallel::part_begin(proxies.size(), parts, part + 1), pairs);
         radix_sort(pairs, io.part_other_pairs[part], pair_key);
     });
-    merge_parts(io.part_pairs, parts, out_pairs, io.sorted_pairs,
-                [](const BodyPair& x, const BodyPair& y) { return x.key() < y.key(); });
+    merge_parts(io.part_pairs, parts, out_pairs, io.sorted_pairs, pair_key);
 }
 
 } // namespace
