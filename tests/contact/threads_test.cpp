@@ -302,6 +302,31 @@ TEST(ThreadPool, RunsEveryPartOnceEvenBeyondItsThreads)
     }
 }
 
+// Runs back to back, as a step issues them, with part counts above and below the thread count: a
+// worker left out of one run must neither miss the next nor run a part of it twice, whether the
+// threads spin between runs (no more threads than cores) or sleep (more).
+TEST(ThreadPool, BackToBackRunsOfChangingSizeRunEachPartOnce)
+{
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    for (int threads : {2, 3, cores, cores + 2}) {
+        sm::ThreadPool pool(threads);
+        std::vector<std::atomic<int>> hits(static_cast<size_t>(threads) + 2);
+        long expected = 0;
+        for (int run = 0; run < 3000; ++run) {
+            const int parts = 1 + run % (threads + 2);
+            pool.run(
+                parts,
+                [](void* ctx, int part) { ++(*static_cast<std::vector<std::atomic<int>>*>(ctx))[part]; },
+                &hits);
+            long total = 0;
+            for (const std::atomic<int>& h : hits)
+                total += h.load();
+            expected += parts;
+            ASSERT_EQ(total, expected) << threads << " threads, run " << run;
+        }
+    }
+}
+
 TEST(ContactThreads, ThreadCountIsValidated)
 {
     sm::WorldDef def = sm::default_world_def();
