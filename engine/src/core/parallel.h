@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <type_traits>
+#include <vector>
 
 namespace supermodal
 {
@@ -52,6 +53,26 @@ class Parallel
         using F = std::remove_reference_t<Fn>;
         Job<F> job{&fn, count, parts, block};
         m_tasks->run(static_cast<int>(parts), &Job<F>::run_part, &job);
+    }
+
+    /// An ordered gather in two passes over one partition of [0, count) (contiguous ranges): tally(begin,
+    /// end) gives each part's T; the parts' running sums in part order give each its start; size(total)
+    /// makes room for the sum of all; then fill(start, begin, end) writes each part's share from its
+    /// start. T is a value type with += (a count, or the counts of several lists); io_starts is scratch.
+    template <class T, class Tally, class Size, class Fill>
+    void gather(size_t count, size_t min_chunk, std::vector<T>& io_starts, Tally&& tally, Size&& size,
+                Fill&& fill) const
+    {
+        const size_t parts = part_count(count, min_chunk);
+        io_starts.assign(parts + 1, T{});
+        for_parts(count, min_chunk,
+                  [&](size_t part, size_t begin, size_t end) { io_starts[part + 1] = tally(begin, end); });
+        for (size_t p = 0; p < parts; ++p)
+            io_starts[p + 1] += io_starts[p];
+        size(static_cast<const T&>(io_starts[parts]));
+        for_parts(count, min_chunk, [&](size_t part, size_t begin, size_t end) {
+            fill(static_cast<const T&>(io_starts[part]), begin, end);
+        });
     }
 
   private:

@@ -553,6 +553,40 @@ size_t pair_row_count(const Registry& reg, const ContactWorld& io, size_t pi)
     return n;
 }
 
+// A pair takes rows when it has points and something that can move: the pairs with rows, in pair
+// order, each with its first point, gathered on the threads.
+void gather_pairs_with_rows(const Parallel& par, const Registry& reg, ContactWorld& io)
+{
+    SoftContacts& rows = io.soft;
+    std::vector<uint32_t>& counts = rows.pair_rows;
+    counts.resize(io.pairs.size());
+    auto tally = [&](size_t begin, size_t end) {
+        RowTally t;
+        for (size_t pi = begin; pi < end; ++pi) {
+            counts[pi] = static_cast<uint32_t>(pair_row_count(reg, io, pi));
+            t.pairs += counts[pi] > 0 ? 1 : 0;
+            t.points += counts[pi];
+        }
+        return t;
+    };
+    auto size = [&](const RowTally& total) {
+        rows.pairs.resize(total.pairs); // no clear first: every slot is written
+        rows.points.resize(total.points);
+    };
+    auto fill = [&](const RowTally& start, size_t begin, size_t end) {
+        RowTally at = start;
+        for (size_t pi = begin; pi < end; ++pi) {
+            if (counts[pi] == 0)
+                continue;
+            rows.pairs[at.pairs++] = SoftPair{.pair = static_cast<uint32_t>(pi),
+                                              .first = static_cast<uint32_t>(at.points),
+                                              .count = counts[pi]};
+            at.points += counts[pi];
+        }
+    };
+    par.gather(io.pairs.size(), k_min_rows_per_part, rows.tally, tally, size, fill);
+}
+
 } // namespace
 
 void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const Parallel& par, Registry& reg,
@@ -564,27 +598,9 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     rows.restitution_speed = def.soft.restitution_speed;
     rows.gravity = length(ctx.gravity);
     rows.up = rows.gravity > 0.0 ? ctx.gravity * (-1.0 / rows.gravity) : Vec3{};
-    rows.pairs.clear();
     io.contacts.clear();
     io.max_penetration = 0.0;
-    // A pair takes rows when it has points and something that can move: each pair's count on the
-    // threads, then the pairs with rows in pair order.
-    std::vector<uint32_t>& counts = rows.pair_rows;
-    counts.resize(io.pairs.size());
-    par.for_parts(io.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t pi = begin; pi < end; ++pi)
-            counts[pi] = static_cast<uint32_t>(pair_row_count(reg, io, pi));
-    });
-    size_t point_count = 0;
-    for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
-        if (counts[pi] == 0)
-            continue;
-        rows.pairs.push_back({.pair = static_cast<uint32_t>(pi),
-                              .first = static_cast<uint32_t>(point_count),
-                              .count = counts[pi]});
-        point_count += counts[pi];
-    }
-    rows.points.resize(point_count);
+    gather_pairs_with_rows(par, reg, io);
     prepare_modal_substep(reg, ctx.h);
     // Each pair writes its own rows and only reads the bodies, so the pairs split across the threads
     // with the same bits on any count; the warm start pushes the bodies, so it runs by island with the
@@ -738,6 +754,17 @@ void restitute_soft_pair(void* rows, size_t pair)
     }
 }
 
+namespace
+{
+
+// Speculative rows alone (a gap, no push) are not a contact: no events, not in the list.
+bool is_contact(const ContactInfo& info, double normal_force)
+{
+    return info.depth > 0.0 || normal_force != 0.0;
+}
+
+} // namespace
+
 void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io)
 {
     SoftContacts& rows = io.soft;
@@ -758,17 +785,17 @@ void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWo
             anchor.friction_load = friction / ctx.h;
             anchor.roll_load = sp.roll_impulse / ctx.h;
             anchor.spring = sp.stick;
+            // Each pair has its own slot of the step's touches.
+            if (is_contact(rows.infos[i], anchor.normal_load))
+                accumulate_touch(io.events, sp.pair, rows.infos[i], anchor.normal_load, ctx.h);
         }
     });
     for (size_t i = 0; i < rows.pairs.size(); ++i) {
         const ContactInfo& info = rows.infos[i];
-        const double normal_force = anchors[i].normal_load;
-        // Speculative rows alone (a gap, no push) are not a contact: no events, not in the list.
-        if (!(info.depth > 0.0) && normal_force == 0.0)
+        if (!is_contact(info, anchors[i].normal_load))
             continue;
         io.contacts.push_back(info);
         io.max_penetration = std::max(io.max_penetration, info.depth);
-        accumulate_touch(io.events, rows.pairs[i].pair, info, normal_force, ctx.h);
     }
     io.anchors.swap(anchors);
 }

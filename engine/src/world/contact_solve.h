@@ -66,20 +66,32 @@ struct SoftPair {
     bool roll_warm = false; ///< ... and roll_impulse.
 };
 
+/// One part's share of the pairs with rows and of their points (summed in part order).
+struct RowTally {
+    size_t pairs = 0;
+    size_t points = 0;
+    RowTally& operator+=(const RowTally& o)
+    {
+        pairs += o.pairs;
+        points += o.points;
+        return *this;
+    }
+};
+
 /// The soft solver's rows of one substep (scratch of ContactWorld).
 struct SoftContacts {
     std::vector<SoftPoint> points;
     std::vector<SoftPair> pairs;
-    std::vector<uint32_t> point_offset; ///< Per pair of ContactWorld::pairs, its first point.
-    double h = 0.0;                     ///< Substep [s].
-    double push_out_speed = 0.0;        ///< [m/s].
-    double restitution_speed = 0.0;     ///< [m/s].
-    double gravity = 0.0;               ///< |g| [m/s²]: a load's mass is its weight over this.
-    Vec3 up{};                          ///< −g/|g|, zero without gravity.
-    bool take_approach = false;         ///< The warm start notes each point's approach speed.
-    std::vector<uint32_t> nodes; ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
+    double h = 0.0;                 ///< Substep [s].
+    double push_out_speed = 0.0;    ///< [m/s].
+    double restitution_speed = 0.0; ///< [m/s].
+    double gravity = 0.0;           ///< |g| [m/s²]: a load's mass is its weight over this.
+    Vec3 up{};                      ///< −g/|g|, zero without gravity.
+    bool take_approach = false;     ///< The warm start notes each point's approach speed.
+    std::vector<uint32_t> nodes;    ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
     std::vector<uint32_t> pair_rows;   ///< Per pair of ContactWorld::pairs, the rows it may take (scratch).
+    std::vector<RowTally> tally;       ///< Per part + 1, its pairs with rows and points (scratch).
     std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
 };
 

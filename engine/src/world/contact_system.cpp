@@ -303,12 +303,53 @@ int update_pairs(const WorldDef& def, const Parallel& par, Registry& reg, Contac
     return substeps_needed(def, reg, io);
 }
 
+namespace
+{
+
+// Kept while touching, or apart with a direction that separated it (the next query's start).
+bool keeps_manifold(const PairManifold& m)
+{
+    return m.count > 0 || length(m.normal) > 0.0;
+}
+
+// The substep's manifolds worth keeping, in pair order (pairs are sorted by key, so the list is too),
+// and the support-map counts, gathered on the threads: the copy is a few megabytes on a large pile.
+void keep_manifolds(const Parallel& par, ContactWorld& io)
+{
+    auto tally = [&](size_t begin, size_t end) {
+        ManifoldTally t;
+        for (size_t pi = begin; pi < end; ++pi) {
+            const auto calls = static_cast<uint64_t>(io.pair_cost[pi].support_calls);
+            const bool touching = io.pair_points[pi].end > io.pair_points[pi].begin;
+            t.kept += keeps_manifold(io.pair_manifold[pi]) ? 1 : 0;
+            t.support_calls += calls;
+            t.touching_pairs += touching ? 1 : 0;
+            t.touching_support_calls += touching ? calls : 0;
+        }
+        return t;
+    };
+    auto size = [&](const ManifoldTally& total) {
+        io.manifolds.resize(total.kept); // no clear first: every slot is written
+        io.support_calls += total.support_calls;
+        io.touching_pairs += total.touching_pairs;
+        io.touching_support_calls += total.touching_support_calls;
+    };
+    auto fill = [&](const ManifoldTally& start, size_t begin, size_t end) {
+        size_t out = start.kept;
+        for (size_t pi = begin; pi < end; ++pi)
+            if (keeps_manifold(io.pair_manifold[pi]))
+                io.manifolds[out++] = io.pair_manifold[pi];
+    };
+    par.gather(io.pairs.size(), k_min_pairs_per_part, io.manifold_tally, tally, size, fill);
+}
+
+} // namespace
+
 void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io)
 {
     // Double-buffered, so a warm substep allocates no manifold list.
     std::vector<PairManifold>& old_manifolds = io.old_manifolds;
     old_manifolds.swap(io.manifolds);
-    io.manifolds.clear();
     io.pair_manifold.resize(io.pairs.size());
     io.pair_cost.resize(io.pairs.size());
     io.part_points.resize(par.part_capacity());
@@ -338,19 +379,7 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
             io.pair_points[pi] = {static_cast<uint32_t>(part), first, static_cast<uint32_t>(points.size())};
         }
     });
-    // Pairs are sorted by key, so compacting in pair order keeps the manifolds sorted too. The counts
-    // are summed here, in pair order, not by the threads.
-    for (size_t pi = 0; pi < io.pairs.size(); ++pi) {
-        // Kept while touching, or apart with a direction that separated it (the next query's start).
-        const PairManifold& m = io.pair_manifold[pi];
-        if (m.count > 0 || length(m.normal) > 0.0)
-            io.manifolds.push_back(m);
-        const auto calls = static_cast<uint64_t>(io.pair_cost[pi].support_calls);
-        const bool touching = io.pair_points[pi].end > io.pair_points[pi].begin;
-        io.support_calls += calls;
-        io.touching_pairs += touching ? 1 : 0;
-        io.touching_support_calls += touching ? calls : 0;
-    }
+    keep_manifolds(par, io);
 }
 
 namespace

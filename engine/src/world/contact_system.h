@@ -41,6 +41,22 @@ struct ParkedContacts {
     std::vector<uint32_t> wake;          ///< Scratch: islands to wake.
 };
 
+/// One part's share of the kept manifolds and support-map counts of a substep (summed in part order).
+struct ManifoldTally {
+    size_t kept = 0;
+    uint64_t support_calls = 0;
+    uint64_t touching_pairs = 0;
+    uint64_t touching_support_calls = 0;
+    ManifoldTally& operator+=(const ManifoldTally& o)
+    {
+        kept += o.kept;
+        support_calls += o.support_calls;
+        touching_pairs += o.touching_pairs;
+        touching_support_calls += o.touching_support_calls;
+        return *this;
+    }
+};
+
 /// Contact data of a world: state (anchors), derived (pairs, points, contacts), scratch.
 struct ContactWorld {
     std::vector<PairAnchor> anchors;           ///< State: sorted by key; hashed and snapshotted.
@@ -49,6 +65,7 @@ struct ContactWorld {
     std::vector<PairManifold> old_manifolds;   ///< Scratch: last substep's, read while making new ones.
     std::vector<PairAnchor> next_anchors;      ///< Scratch: this substep's anchors while they are made.
     std::vector<QueryCost> pair_cost;          ///< Scratch: per pair, its support-map work this substep.
+    std::vector<ManifoldTally> manifold_tally; ///< Scratch: per part + 1, its kept manifolds and counts.
     uint64_t support_calls = 0;                ///< Derived: support-map evaluations over this step [-].
     uint64_t touching_pairs = 0;               ///< Derived: pairs with points, summed over substeps [-].
     uint64_t touching_support_calls = 0;       ///< Derived: the part of support_calls those pairs made [-].
