@@ -382,7 +382,7 @@ template <class Fn> void for_islands(const Parallel& par, const IslandBuilder& i
 }
 
 // Splits each island of at least two slabs' rows by its bodies' positions (IslandSlabs).
-void split_large_islands(const Registry& bodies, bool enabled, ConstraintScratch& s)
+void split_large_islands(const Registry& bodies, bool enabled, const Parallel& par, ConstraintScratch& s)
 {
     const IslandBuilder& islands = s.islands;
     s.island_split.assign(islands.island_count(), k_not_split);
@@ -397,7 +397,7 @@ void split_large_islands(const Registry& bodies, bool enabled, ConstraintScratch
             continue;
         if (s.slabs.size() <= s.split_count)
             s.slabs.emplace_back();
-        s.slabs[s.split_count].build(rows, islands, slabs, position);
+        s.slabs[s.split_count].build(rows, islands, slabs, position, par);
         s.island_split[i] = static_cast<uint32_t>(s.split_count++);
     }
 }
@@ -465,7 +465,7 @@ void apply_constraint_forces(const StepContext& ctx, const Parallel& par, Regist
     scratch.row_count = n;
     const std::span<Row> rows(scratch.rows.data(), n);
     prepare_rows(ctx.h, par, bodies, rows, cw, scratch.islands, extra);
-    split_large_islands(bodies, cw.split_islands, scratch);
+    split_large_islands(bodies, cw.split_islands, par, scratch);
     const size_t total = n + extra.count;
     if (extra.warm_start != nullptr && extra.count > 0)
         run_islands(par, scratch, total, 1, [&](uint32_t i) {

@@ -115,10 +115,10 @@ void IslandSlabs::collect_nodes(std::span<const uint32_t> rows, const IslandBuil
     auto add = [&](uint32_t n) {
         if (n == k_no_node)
             return;
-        if (n >= m_slab.size())
-            m_slab.resize(static_cast<size_t>(n) + 1, k_unset);
-        if (m_slab[n] == k_unset) {
-            m_slab[n] = 0;
+        if (n >= m_seen.size())
+            m_seen.resize(static_cast<size_t>(n) + 1, 0);
+        if (m_seen[n] == 0) {
+            m_seen[n] = 1;
             m_nodes.push_back(n);
         }
     };
@@ -127,6 +127,11 @@ void IslandSlabs::collect_nodes(std::span<const uint32_t> rows, const IslandBuil
         add(a);
         add(b);
     }
+    for (uint32_t n : m_nodes)
+        m_seen[n] = 0;
+    for (Trial& t : m_trials)
+        if (t.slab.size() < m_seen.size())
+            t.slab.resize(m_seen.size(), k_unset);
 }
 
 namespace
@@ -155,7 +160,7 @@ template <class Keys> std::array<double, 3> extents(const Keys& keys)
 
 } // namespace
 
-uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) const
+uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs)
 {
     const auto k = static_cast<uint32_t>(slabs);
     const uint32_t lo = std::min(slab_a, slab_b), hi = std::max(slab_a, slab_b);
@@ -167,7 +172,7 @@ uint32_t IslandSlabs::group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) c
     return lo % 2 == 0 ? k + lo / 2 : k + k / 2 + lo / 2;
 }
 
-void IslandSlabs::assign_slabs(int axis, size_t slabs)
+void IslandSlabs::assign_slabs(int axis, size_t slabs, Trial& out) const
 {
     auto before = [axis](const Key& x, const Key& y) {
         const double cx = sort_coordinate(x.position, axis), cy = sort_coordinate(y.position, axis);
@@ -175,57 +180,74 @@ void IslandSlabs::assign_slabs(int axis, size_t slabs)
     };
     // Slab s holds the ranks [ceil(s·n/K), ceil((s+1)·n/K)) of the order above: each boundary found by
     // selection in what is left, not a whole sort (the order is total, so the slabs are the same).
-    const size_t n = m_keys.size();
+    std::vector<Key>& keys = out.keys;
+    keys.assign(m_keys.begin(), m_keys.end());
+    const size_t n = keys.size();
     size_t begin = 0;
     for (size_t slab = 0; slab < slabs; ++slab) {
         const size_t end = ((slab + 1) * n + slabs - 1) / slabs;
         if (end < n)
-            std::nth_element(m_keys.begin() + static_cast<std::ptrdiff_t>(begin),
-                             m_keys.begin() + static_cast<std::ptrdiff_t>(end), m_keys.end(), before);
+            std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(begin),
+                             keys.begin() + static_cast<std::ptrdiff_t>(end), keys.end(), before);
         for (size_t i = begin; i < end; ++i)
-            m_slab[m_keys[i].node] = static_cast<uint32_t>(slab);
+            out.slab[keys[i].node] = static_cast<uint32_t>(slab);
         begin = end;
     }
 }
 
-uint32_t IslandSlabs::row_group(uint32_t row, const IslandBuilder& islands, size_t slabs) const
+uint32_t IslandSlabs::row_group(uint32_t row, const IslandBuilder& islands, size_t slabs,
+                                const std::vector<uint32_t>& slab)
 {
     const auto [a, b] = islands.ends(row);
     if (a == k_no_node && b == k_no_node)
         return static_cast<uint32_t>(2 * slabs - 1);
-    const uint32_t sa = a != k_no_node ? m_slab[a] : m_slab[b];
-    const uint32_t sb = b != k_no_node ? m_slab[b] : sa;
+    const uint32_t sa = a != k_no_node ? slab[a] : slab[b];
+    const uint32_t sb = b != k_no_node ? slab[b] : sa;
     return group_of(sa, sb, slabs);
 }
 
 // The slabs run along the axis, of those at least half as long as the longest, whose groups break the
 // rows' own order least: a group walks its rows in that order, which is their order in memory, and
 // short runs with gaps between them cost the hardware's prefetching (measured on a 4000-body pile: the
-// passes 20% slower than unsplit across the grid the bodies were created along, 9% along it).
-int IslandSlabs::choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+// passes 20% slower than unsplit across the grid the bodies were created along, 9% along it). Each
+// axis is tried on its own thread; ties go to the first axis.
+int IslandSlabs::choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
+                             const Parallel& par)
 {
     const std::array<double, 3> extent = extents(m_keys);
     const double longest = std::max({extent[0], extent[1], extent[2]});
-    int best = -1;
-    size_t best_breaks = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (!(extent[axis] >= 0.5 * longest))
-            continue;
-        assign_slabs(axis, slabs);
-        size_t breaks = 0;
-        for (size_t i = 1; i < rows.size(); ++i)
-            breaks += row_group(rows[i], islands, slabs) != row_group(rows[i - 1], islands, slabs);
-        if (best < 0 || breaks < best_breaks) {
-            best = axis;
-            best_breaks = breaks;
+    std::array<int, 3> axes{};
+    size_t count = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        if (extent[axis] >= 0.5 * longest)
+            axes[count++] = axis;
+    if (count == 0) // no finite extent: any axis splits as well
+        axes[count++] = 0;
+    par.for_parts(count, 1, [&](size_t, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+            Trial& t = m_trials[static_cast<size_t>(axes[k])];
+            assign_slabs(axes[k], slabs, t);
+            t.breaks = 0;
+            uint32_t last = 0;
+            for (size_t i = 0; i < rows.size(); ++i) {
+                const uint32_t group = row_group(rows[i], islands, slabs, t.slab);
+                t.breaks += i > 0 && group != last ? 1 : 0;
+                last = group;
+            }
         }
-    }
-    return std::max(best, 0);
+    });
+    int best = axes[0];
+    for (size_t k = 1; k < count; ++k)
+        if (m_trials[static_cast<size_t>(axes[k])].breaks < m_trials[static_cast<size_t>(best)].breaks)
+            best = axes[k];
+    return best;
 }
 
-void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs)
+void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
+                        const Parallel& par)
 {
-    assign_slabs(choose_axis(rows, islands, slabs), slabs);
+    const std::vector<uint32_t>& slab =
+        m_trials[static_cast<size_t>(choose_axis(rows, islands, slabs, par))].slab;
     const size_t groups = 2 * slabs;
     m_phase[0] = 0;
     m_phase[1] = slabs;
@@ -235,7 +257,7 @@ void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& isl
     m_row_group.resize(rows.size());
     m_start.assign(groups + 1, 0);
     for (size_t i = 0; i < rows.size(); ++i) {
-        m_row_group[i] = row_group(rows[i], islands, slabs);
+        m_row_group[i] = row_group(rows[i], islands, slabs, slab);
         ++m_start[m_row_group[i] + 1];
     }
     for (size_t g = 0; g < groups; ++g)
@@ -244,8 +266,6 @@ void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& isl
     m_rows.resize(rows.size());
     for (size_t i = 0; i < rows.size(); ++i)
         m_rows[m_fill[m_row_group[i]]++] = rows[i];
-    for (uint32_t node : m_nodes)
-        m_slab[node] = k_unset;
 }
 
 } // namespace supermodal

@@ -8,8 +8,10 @@
 // from the same static body stay two islands.
 #pragma once
 
+#include "core/parallel.h"
 #include "supermodal/math.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -80,15 +82,16 @@ class IslandSlabs
 
     /// Splits `rows` (one island's, ascending, their ends read from `islands`) into `slabs` slabs;
     /// position(node) is the node's position [m], world.
+    /// The candidate axes are tried on the threads of `par` (the same split on any).
     template <class Position>
     void build(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
-               Position&& position)
+               Position&& position, const Parallel& par = Parallel{})
     {
         collect_nodes(rows, islands);
         m_keys.clear();
         for (uint32_t n : m_nodes)
             m_keys.push_back({position(n), n});
-        split(rows, islands, slabs);
+        split(rows, islands, slabs, par);
     }
 
     /// Groups [first, last) of phase p.
@@ -104,16 +107,26 @@ class IslandSlabs
         Vec3 position;
         uint32_t node;
     };
+    /// The slabs along one axis.
+    struct Trial {
+        std::vector<Key> keys;      ///< m_keys, partly ordered along the axis.
+        std::vector<uint32_t> slab; ///< Per node index (of the island's nodes): its slab.
+        size_t breaks = 0;          ///< Where the rows' group changes from one row to the next [-].
+    };
     void collect_nodes(std::span<const uint32_t> rows, const IslandBuilder& islands);
-    void split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs);
-    int choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs);
-    void assign_slabs(int axis, size_t slabs);
-    [[nodiscard]] uint32_t row_group(uint32_t row, const IslandBuilder& islands, size_t slabs) const;
-    [[nodiscard]] uint32_t group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs) const;
+    void split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
+               const Parallel& par);
+    int choose_axis(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
+                    const Parallel& par);
+    void assign_slabs(int axis, size_t slabs, Trial& out) const;
+    [[nodiscard]] static uint32_t row_group(uint32_t row, const IslandBuilder& islands, size_t slabs,
+                                            const std::vector<uint32_t>& slab);
+    [[nodiscard]] static uint32_t group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs);
 
     std::vector<uint32_t> m_nodes;     ///< The island's nodes, as their rows first name them.
     std::vector<Key> m_keys;           ///< Per node of m_nodes: its position.
-    std::vector<uint32_t> m_slab;      ///< Per node index: its slab while splitting, else unset.
+    std::vector<uint8_t> m_seen;       ///< Per node index: whether m_nodes has it (collect_nodes).
+    std::array<Trial, 3> m_trials;     ///< Per axis.
     std::vector<uint32_t> m_row_group; ///< Per row of the island: its group.
     std::vector<uint32_t> m_start;     ///< Per group + 1: offset into m_rows.
     std::vector<uint32_t> m_fill;      ///< Per group: next free slot (split only).
