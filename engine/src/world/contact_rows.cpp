@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "world/contact_rows.h"
 
+#include "core/parallel.h"
+#include "world/contact_system.h"
+
 #include <algorithm>
 #include <limits>
 #include <vector>
@@ -43,6 +46,18 @@ size_t spread_rows(std::span<const ContactPoint> points, std::span<uint32_t> out
         out[count] = static_cast<uint32_t>(best);
     }
     return out.size();
+}
+
+// How many rows pair pi may take: none without points or without a body that can move.
+size_t pair_row_count(const Registry& reg, const ContactWorld& io, size_t pi)
+{
+    const BodyPair& pair = io.pairs[pi];
+    const bool modal = reg.find<ModalBody>(pair.a) != nullptr || reg.find<ModalBody>(pair.b) != nullptr;
+    const size_t n =
+        std::min(io.points_of(pi).size(), modal ? k_max_rows_per_modal_pair : k_max_rows_per_pair);
+    if (n == 0 || !(reg.get<BodyModel>(pair.a).inv_mass + reg.get<BodyModel>(pair.b).inv_mass > 0.0))
+        return 0;
+    return n;
 }
 
 } // namespace
@@ -100,6 +115,40 @@ size_t pick_rows(std::span<const ContactPoint> points, bool flat_faces, std::spa
         return length(cross(p0 - p, p1 - p)) + length(cross(p1 - p, p2 - p)) + length(cross(p2 - p, p0 - p));
     });
     return count;
+}
+
+// A pair takes rows when it has points and something that can move: the pairs with rows, in pair
+// order, each with its first point, gathered on the threads.
+void gather_pairs_with_rows(const Parallel& par, const Registry& reg, ContactWorld& io)
+{
+    SoftContacts& rows = io.soft;
+    std::vector<uint32_t>& counts = rows.pair_rows;
+    counts.resize(io.pairs.size());
+    auto tally = [&](size_t begin, size_t end) {
+        RowTally t;
+        for (size_t pi = begin; pi < end; ++pi) {
+            counts[pi] = static_cast<uint32_t>(pair_row_count(reg, io, pi));
+            t.pairs += counts[pi] > 0 ? 1 : 0;
+            t.points += counts[pi];
+        }
+        return t;
+    };
+    auto size = [&](const RowTally& total) {
+        rows.pairs.resize(total.pairs); // no clear first: every slot is written
+        rows.points.resize(total.points);
+    };
+    auto fill = [&](const RowTally& start, size_t begin, size_t end) {
+        RowTally at = start;
+        for (size_t pi = begin; pi < end; ++pi) {
+            if (counts[pi] == 0)
+                continue;
+            rows.pairs[at.pairs++] = SoftPair{.pair = static_cast<uint32_t>(pi),
+                                              .first = static_cast<uint32_t>(at.points),
+                                              .count = counts[pi]};
+            at.points += counts[pi];
+        }
+    };
+    par.gather(io.pairs.size(), k_min_rows_per_part, rows.tally, tally, size, fill);
 }
 
 } // namespace supermodal

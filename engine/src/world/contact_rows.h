@@ -4,6 +4,7 @@
 
 #include "contact/narrowphase.h"
 #include "dynamics/body.h"
+#include "world/components.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +12,9 @@
 
 namespace supermodal
 {
+class Parallel;
+struct ContactWorld;
+
 // Most rows a pair takes: a sampled pair may have dozens of points on one patch, and as rigid rows
 // they are nearly redundant, which Gauss–Seidel converges on slowly (measured: a sampled sphere resting
 // at 1/60 s rolled at 2 mm/s on all its points). Four spanning the patch hold it flat.
@@ -27,5 +31,9 @@ bool rests_on_a_patch(const BodyModel& m);
 // Up to out.size() (k_max_rows_per_pair, or more for a modal pair) of the points; their indices in
 // `out`, the count returned. On round bodies (flat_faces false) the deepest alone.
 size_t pick_rows(std::span<const ContactPoint> points, bool flat_faces, std::span<uint32_t> out);
+
+/// The pairs that take rows (points, and a body that can move), in pair order, into SoftContacts::pairs,
+/// each with its first point in SoftContacts::points (sized here); counted and written on the threads.
+void gather_pairs_with_rows(const Parallel& par, const Registry& reg, ContactWorld& io);
 
 } // namespace supermodal
