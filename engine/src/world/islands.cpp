@@ -227,12 +227,11 @@ int IslandSlabs::choose_axis(std::span<const uint32_t> rows, const IslandBuilder
         for (size_t k = begin; k < end; ++k) {
             Trial& t = m_trials[static_cast<size_t>(axes[k])];
             assign_slabs(axes[k], slabs, t);
+            t.group.resize(rows.size());
             t.breaks = 0;
-            uint32_t last = 0;
             for (size_t i = 0; i < rows.size(); ++i) {
-                const uint32_t group = row_group(rows[i], islands, slabs, t.slab);
-                t.breaks += i > 0 && group != last ? 1 : 0;
-                last = group;
+                t.group[i] = row_group(rows[i], islands, slabs, t.slab);
+                t.breaks += i > 0 && t.group[i] != t.group[i - 1] ? 1 : 0;
             }
         }
     });
@@ -246,26 +245,24 @@ int IslandSlabs::choose_axis(std::span<const uint32_t> rows, const IslandBuilder
 void IslandSlabs::split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
                         const Parallel& par)
 {
-    const std::vector<uint32_t>& slab =
-        m_trials[static_cast<size_t>(choose_axis(rows, islands, slabs, par))].slab;
+    // The chosen axis's trial already holds each row's group.
+    const std::vector<uint32_t>& row_groups =
+        m_trials[static_cast<size_t>(choose_axis(rows, islands, slabs, par))].group;
     const size_t groups = 2 * slabs;
     m_phase[0] = 0;
     m_phase[1] = slabs;
     m_phase[2] = slabs + slabs / 2;
     m_phase[3] = groups - 1;
     m_phase[4] = groups;
-    m_row_group.resize(rows.size());
     m_start.assign(groups + 1, 0);
-    for (size_t i = 0; i < rows.size(); ++i) {
-        m_row_group[i] = row_group(rows[i], islands, slabs, slab);
-        ++m_start[m_row_group[i] + 1];
-    }
+    for (uint32_t g : row_groups)
+        ++m_start[g + 1];
     for (size_t g = 0; g < groups; ++g)
         m_start[g + 1] += m_start[g];
     m_fill.assign(m_start.begin(), m_start.end() - 1);
     m_rows.resize(rows.size());
     for (size_t i = 0; i < rows.size(); ++i)
-        m_rows[m_fill[m_row_group[i]]++] = rows[i];
+        m_rows[m_fill[row_groups[i]]++] = rows[i];
 }
 
 } // namespace supermodal

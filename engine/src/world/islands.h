@@ -109,9 +109,10 @@ class IslandSlabs
     };
     /// The slabs along one axis.
     struct Trial {
-        std::vector<Key> keys;      ///< m_keys, partly ordered along the axis.
-        std::vector<uint32_t> slab; ///< Per node index (of the island's nodes): its slab.
-        size_t breaks = 0;          ///< Where the rows' group changes from one row to the next [-].
+        std::vector<Key> keys;       ///< m_keys, partly ordered along the axis.
+        std::vector<uint32_t> slab;  ///< Per node index (of the island's nodes): its slab.
+        std::vector<uint32_t> group; ///< Per row of the island: its group.
+        size_t breaks = 0;           ///< Where the rows' group changes from one row to the next [-].
     };
     void collect_nodes(std::span<const uint32_t> rows, const IslandBuilder& islands);
     void split(std::span<const uint32_t> rows, const IslandBuilder& islands, size_t slabs,
@@ -123,15 +124,14 @@ class IslandSlabs
                                             const std::vector<uint32_t>& slab);
     [[nodiscard]] static uint32_t group_of(uint32_t slab_a, uint32_t slab_b, size_t slabs);
 
-    std::vector<uint32_t> m_nodes;     ///< The island's nodes, as their rows first name them.
-    std::vector<Key> m_keys;           ///< Per node of m_nodes: its position.
-    std::vector<uint8_t> m_seen;       ///< Per node index: whether m_nodes has it (collect_nodes).
-    std::array<Trial, 3> m_trials;     ///< Per axis.
-    std::vector<uint32_t> m_row_group; ///< Per row of the island: its group.
-    std::vector<uint32_t> m_start;     ///< Per group + 1: offset into m_rows.
-    std::vector<uint32_t> m_fill;      ///< Per group: next free slot (split only).
-    std::vector<uint32_t> m_rows;      ///< Rows grouped.
-    size_t m_phase[k_phases + 1]{};    ///< Per phase + 1: first group.
+    std::vector<uint32_t> m_nodes;  ///< The island's nodes, as their rows first name them.
+    std::vector<Key> m_keys;        ///< Per node of m_nodes: its position.
+    std::vector<uint8_t> m_seen;    ///< Per node index: whether m_nodes has it (collect_nodes).
+    std::array<Trial, 3> m_trials;  ///< Per axis.
+    std::vector<uint32_t> m_start;  ///< Per group + 1: offset into m_rows.
+    std::vector<uint32_t> m_fill;   ///< Per group: next free slot (split only).
+    std::vector<uint32_t> m_rows;   ///< Rows grouped.
+    size_t m_phase[k_phases + 1]{}; ///< Per phase + 1: first group.
 };
 
 } // namespace supermodal
