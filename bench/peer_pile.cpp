@@ -211,7 +211,7 @@ int main(int argc, char** argv)
 {
     Options o;
     std::vector<std::string> sets;
-    std::string solver = "penalty";
+    std::string solver = "soft"; // the engine's default (ContactDef::solver)
     CLI::App app{"Pile of N bodies in an open box: supermodal against Bullet, one thread"};
     app.add_option("n", o.n, "Bodies [-]")->check(CLI::PositiveNumber);
     app.add_option("substeps", o.substeps, "supermodal substeps per step [-]")->check(CLI::Range(1, 1000));
@@ -226,7 +226,7 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"all", "supermodal", "bullet"}));
     app.add_option("--csv", o.csv, "Append the table to this CSV file (header when new)");
     app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
-    app.add_option("--solver", solver, "supermodal contact solver (penalty or soft)");
+    app.add_option("--solver", solver, "supermodal contact solver: soft (the default) or penalty");
     CLI11_PARSE(app, argc, argv);
     o.timed_steps = std::min(o.timed_steps, o.steps);
     for (const std::string& kv : sets)

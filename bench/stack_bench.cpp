@@ -232,7 +232,7 @@ int main(int argc, char** argv)
 {
     Options o;
     std::vector<std::string> sets;
-    std::string solver = "penalty";
+    std::string solver = "soft"; // the engine's default (ContactDef::solver)
     CLI::App app{"Stacking: a column, a pyramid and a floor layer of boxes, supermodal against Bullet"};
     app.add_option("--column", o.column, "Boxes in the column [-], 0: none")->check(CLI::NonNegativeNumber);
     app.add_option("--pyramid", o.pyramid, "Rows of the pyramid [-], 0: none")->check(CLI::NonNegativeNumber);
@@ -249,7 +249,7 @@ int main(int argc, char** argv)
     app.add_option("--trace", o.trace, "Print the largest speed every this many seconds [s] (0: off)")
         ->check(CLI::NonNegativeNumber);
     app.add_option("--set", sets, "supermodal ContactDef field, key=value (repeatable)");
-    app.add_option("--solver", solver, "supermodal contact solver (penalty or soft)");
+    app.add_option("--solver", solver, "supermodal contact solver: soft (the default) or penalty");
     CLI11_PARSE(app, argc, argv);
     for (const std::string& kv : sets)
         if (const std::string error = apply_contact_setting(o.supermodal.contact, kv); !error.empty())

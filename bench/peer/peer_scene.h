@@ -77,9 +77,8 @@ struct SupermodalOptions {
 /// names). Returns an empty string, or what was wrong.
 [[nodiscard]] std::string apply_contact_setting(sm::ContactDef& def, std::string_view key_value);
 
-/// Picks the contact solver by name. The engine has one, penalty springs ("penalty"); when ContactDef
-/// gains a solver choice, its names map onto the field here (see peer_scene.cpp). Returns an empty
-/// string, or what was wrong.
+/// Picks the contact solver by name: "soft" (the engine's default) or "penalty" (the paper's springs).
+/// Returns an empty string, or what was wrong.
 [[nodiscard]] std::string apply_contact_solver(sm::ContactDef& def, std::string_view name);
 
 /// A fixed LCG, so every run builds the same scene; uniform in [-1, 1).
