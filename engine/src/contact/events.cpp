@@ -31,13 +31,17 @@ ContactEvent end_from(const TouchRecord& r)
 
 void begin_step_events(ContactEvents& io, size_t pair_count)
 {
-    io.touch.assign(pair_count, PairTouch{});
+    // Only new slots are written here; the others are stale by the new step number.
+    io.touch.resize(pair_count);
+    ++io.step;
 }
 
 void accumulate_touch(ContactEvents& io, size_t pair_index, const ContactInfo& info, double normal_force,
                       double h)
 {
     PairTouch& t = io.touch[pair_index];
+    if (t.step != io.step)
+        t = PairTouch{.step = io.step};
     t.touched = true;
     t.point = info.point;
     t.normal = info.normal;
@@ -65,7 +69,7 @@ void publish_events(ContactEvents& io, std::span<const BodyPair> pairs, std::spa
         const BodyPair& pair = pairs[j];
         const bool was = key_prev == key_pair;
         const bool at_end = c < last.size() && last[c].a == pair.a && last[c].b == pair.b;
-        const PairTouch t = j < io.touch.size() ? io.touch[j] : PairTouch{};
+        const PairTouch t = j < io.touch.size() && io.touch[j].step == io.step ? io.touch[j] : PairTouch{};
         if (t.touched) {
             // The step's impulse is reported once per pair: on its Begin or Persist, else on its End.
             if (!was)

@@ -17,8 +17,11 @@
 namespace supermodal
 {
 
-/// What one candidate pair did over the step's substeps.
+/// What one candidate pair did over the step's substeps. A slot whose `step` is not the current
+/// ContactEvents::step holds an earlier step's record and reads as untouched: the slots need no reset
+/// per step (a serial write of every candidate pair's record, ~1 MB on a 4000-body pile).
 struct PairTouch {
+    uint64_t step = 0; ///< ContactEvents::step when written.
     bool touched = false;
     Vec3 point{}, normal{};    ///< At the last substep the pair touched [m], world.
     Vec3 impulse_on_a{};       ///< Σ h·F on a [N·s], world.
@@ -34,7 +37,8 @@ struct TouchRecord {
 };
 
 struct ContactEvents {
-    std::vector<PairTouch> touch;      ///< Scratch: per candidate pair of this step.
+    std::vector<PairTouch> touch;      ///< Scratch: per candidate pair of this step (see PairTouch::step).
+    uint64_t step = 0;                 ///< Scratch: counts begin_step_events calls.
     std::vector<TouchRecord> touching; ///< Derived: touching at the end of the last step, by key.
     std::vector<TouchRecord> next;     ///< Scratch.
     std::vector<ContactEvent> events;  ///< Derived: the last step's events.
