@@ -66,6 +66,28 @@ TEST(Support, EllipsoidShortcutAgreesWithTheNestedFormulaNearby)
         }
 }
 
+TEST(Support, EqualExponentsOneLevelAgreesWithTheNestedFormulaNearby)
+{
+    // ε1 = ε2 ≠ 1 (below 2) takes one ℓq level over all three components; ε2 = ε1·(1 ± 1e-12) takes
+    // the nested levels. The point moves by O(δε · size) between them (larger near a flat face's edge,
+    // where the point slides fastest with ε), so they agree to 1e-8 of the size; a wrong level would
+    // differ by O(size).
+    constexpr double k_agree_rel = 1e-8;
+    constexpr int k_directions = 200;
+    for (double e : {0.1, 0.3, 0.7, 1.5, 1.9})
+        for (const sm::Vec3& a : {sm::Vec3{1, 1, 1}, sm::Vec3{0.1, 0.05, 0.02}, sm::Vec3{1000, 1, 0.5}})
+            for (int k = 0; k < k_directions; ++k) {
+                const sm::Vec3 d = fibonacci_direction(k, k_directions);
+                const sm::Vec3 one = sm::support_point(superquadric(a, e, e), d);
+                const double size = std::max({a.x, a.y, a.z});
+                for (double f : {1.0 - 1e-12, 1.0 + 1e-12}) {
+                    const sm::Vec3 nested = sm::support_point(superquadric(a, e, e * f), d);
+                    for (int i = 0; i < 3; ++i)
+                        EXPECT_NEAR(one[i], nested[i], k_agree_rel * size) << e << " " << k;
+                }
+            }
+}
+
 TEST(Support, BoxOctahedronAndHullLimits)
 {
     // ε = 0.01: a generic direction's support point is the corner sign(d)·a up to factors

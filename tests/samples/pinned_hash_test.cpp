@@ -77,9 +77,13 @@ struct Pinned {
 // support-map pair and keeps its hash.
 // Demo and chair, 2026-12-04 (soft contact damping ratio 10 -> 5 between rigid bodies): their rigid
 // contacts' springs change; ball on board and pile run the penalty solver and keep theirs.
+// Demo and chair, 2026-12-05 (support map of equal exponents): a superquadric with ε1 = ε2 ≠ 1 takes its
+// support point from one ℓq level over all three components instead of two nested levels (the same
+// point to rounding: Support.EqualExponentsOneLevelAgreesWithTheNestedFormulaNearby); their rounded
+// boxes' trajectories then part; ball on board and pile have no such body and keep theirs.
 constexpr Pinned k_pinned[] = {
-    {"demo", 400, 0x91e509b63343a582ULL},
-    {"chair_with_dummy", 500, 0xa717cd10f6a48963ULL},
+    {"demo", 400, 0x19b55db11f7f0595ULL},
+    {"chair_with_dummy", 500, 0xcd597b0855267d71ULL},
     {"ball_on_board", 400, 0x54df90b900dc4319ULL},
     {"pile", 240, 0x79e37d9f2636e774ULL},
 };

@@ -107,6 +107,60 @@ DualResult dual_level(double c0, double c1, double eps, bool hessian = false)
     return out;
 }
 
+// Equal exponents (ε1 = ε2 = ε, a rounded box's usual case): the nested norm is one ℓq norm of all three
+// components, so its maximiser takes three powers instead of the two levels' four. Same steps as
+// dual_level with two other components: with r_k = 1 the largest ratio, t_i = r_i^q, sum = 1 + Σ t_i and
+// w = sum^(−ε/2), v_k = s_k·w and v_i = s_i·(t_i/r_i)·w. For ε in (0, 2), ε ≠ 1; c as scaled_direction
+// gives it (largest |c_i| exactly 1).
+struct FlatDual {
+    Vec3 v{};          // maximiser of c·v over the unit ℓp ball
+    double q = 0.0;    // dual exponent [-]
+    double w = 0.0;    // sum^(−ε/2) = ‖c‖_q^(1−q) [-]
+    double norm = 0.0; // ‖c‖_q = sum·w [-]
+    Vec3 r{}, t{};     // |c_i| and |c_i|^q
+};
+
+FlatDual flat_dual(const Vec3& c, double eps)
+{
+    FlatDual out;
+    out.q = 2.0 / (2.0 - eps);
+    out.r = {std::abs(c.x), std::abs(c.y), std::abs(c.z)};
+    const int k = out.r.x >= out.r.y ? (out.r.x >= out.r.z ? 0 : 2) : (out.r.y >= out.r.z ? 1 : 2);
+    double sum = 1.0;
+    for (int i = 0; i < 3; ++i) {
+        out.t[i] = i == k ? 1.0 : std::pow(out.r[i], out.q);
+        sum += i == k ? 0.0 : out.t[i];
+    }
+    out.w = std::pow(sum, -0.5 * eps);
+    out.norm = sum * out.w;
+    for (int i = 0; i < 3; ++i) {
+        const double sign = c[i] > 0.0 ? 1.0 : (c[i] < 0.0 ? -1.0 : 0.0);
+        out.v[i] = i == k ? sign * out.w : (out.r[i] > 0.0 ? sign * (out.t[i] / out.r[i]) * out.w : 0.0);
+    }
+    return out;
+}
+
+// Its Hessian ∂v_i/∂c_j = (q − 1)·(r_i^(q−2)·w·δ_ij − v_i v_j / ‖c‖_q), with r_i^(q−2) capped as in
+// dual_hessian where a flat face makes it unbounded.
+Mat3 flat_hessian(const FlatDual& f)
+{
+    Mat3 h{};
+    for (int i = 0; i < 3; ++i) {
+        const double r = f.r[i];
+        double diag = r > 0.0 ? f.t[i] / (r * r) : (f.q > 2.0 ? 0.0 : (f.q == 2.0 ? 1.0 : k_hessian_cap));
+        diag = std::min(diag, k_hessian_cap);
+        for (int j = 0; j < 3; ++j)
+            h.m[i][j] = (f.q - 1.0) * ((i == j ? diag * f.w : 0.0) - f.v[i] * f.v[j] / f.norm);
+    }
+    return h;
+}
+
+// Whether the shape takes flat_dual.
+bool flat_exponents(const ShapeDef& shape)
+{
+    return shape.epsilon1 == shape.epsilon2 && shape.epsilon1 < 2.0 && shape.epsilon1 != 1.0;
+}
+
 // The direction scaled to c = a ∘ d / max|a ∘ d| (largest component exactly 1, so no level overflows),
 // and that scale, max|a ∘ d| [m]. False for a zero or non-finite direction.
 bool scaled_direction(const Vec3& a, const Vec3& direction, Vec3& out_c, double& out_scale)
@@ -149,6 +203,8 @@ Vec3 support_point(const ShapeDef& shape, const Vec3& direction)
         const double len = length(c);
         return {a.x * (c.x / len), a.y * (c.y / len), a.z * (c.z / len)};
     }
+    if (flat_exponents(shape))
+        return hadamard(a, flat_dual(c, shape.epsilon1).v);
     const DualResult inner = dual_level(c.x, c.y, shape.epsilon2);
     const DualResult outer = dual_level(inner.norm, c.z, shape.epsilon1);
     const double rho = outer.v[0];
@@ -181,6 +237,15 @@ SupportJet support_jet(const ShapeDef& shape, const Vec3& direction)
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
                 jet.jacobian.m[i][j] = ((i == j ? a[i] * a[i] : 0.0) - jet.point[i] * jet.point[j]) / h;
+        return jet;
+    }
+    if (flat_exponents(shape)) {
+        const FlatDual f = flat_dual(c, shape.epsilon1);
+        jet.point = hadamard(a, f.v);
+        const Mat3 n = flat_hessian(f);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                jet.jacobian.m[i][j] = a[i] * n.m[i][j] * a[j] / scale;
         return jet;
     }
     const DualResult inner = dual_level(c.x, c.y, shape.epsilon2, true);
