@@ -172,11 +172,8 @@ void push(Side& s, const Vec3& impulse, const Vec3& angular_impulse)
     s.v->angular += s.inv_inertia * (cross(s.r, impulse) + angular_impulse);
 }
 
-namespace
-{
-
-// K = (1/ma + 1/mb)·I − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]× (+ Σ φφᵀ over both bodies' modes).
-Mat3 point_mass_inverse(const Side& a, const Side& b, bool with_modes)
+// K = (1/ma + 1/mb)·I − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]× + Σ φφᵀ over both bodies' modes.
+Mat3 point_mass_inverse(const Side& a, const Side& b)
 {
     Mat3 k = Mat3::diagonal({1, 1, 1});
     for (int i = 0; i < 3; ++i)
@@ -184,22 +181,10 @@ Mat3 point_mass_inverse(const Side& a, const Side& b, bool with_modes)
     for (const Side* s : {&a, &b}) {
         if (s->inv_mass > 0.0)
             k = add_scaled(k, skew(s->r) * s->inv_inertia * skew(s->r), -1.0);
-        if (with_modes && s->modal.active())
+        if (s->modal.active())
             k = add_scaled(k, modal_anchor_inverse_mass(*s->modal), 1.0);
     }
     return k;
-}
-
-} // namespace
-
-Mat3 point_mass_inverse(const Side& a, const Side& b)
-{
-    return point_mass_inverse(a, b, true);
-}
-
-Mat3 rigid_point_mass_inverse(const Side& a, const Side& b)
-{
-    return point_mass_inverse(a, b, false);
 }
 
 Mat3 anchor_inertia_inverse(const Side& a, const Side& b)

@@ -96,8 +96,6 @@ void push_rigid_spin(Side& s, const Vec3& angular_impulse);
 }
 /// K = anchor velocity change of a relative to b per unit impulse [1/kg] (rigid and modal).
 [[nodiscard]] Mat3 point_mass_inverse(const Side& a, const Side& b);
-/// The same without the modes' part [1/kg]: the rigid bodies' alone.
-[[nodiscard]] Mat3 rigid_point_mass_inverse(const Side& a, const Side& b);
 /// Spin change of b relative to a per unit angular impulse [1/(kg·m²)] (rigid and modal).
 [[nodiscard]] Mat3 anchor_inertia_inverse(const Side& a, const Side& b);
 /// Inverse of a symmetric 3×3 by cofactors; false when (nearly) singular.
