@@ -9,16 +9,12 @@
 
 namespace supermodal
 {
-namespace
-{
 
 Mat3 world_inv_inertia(const BodyModel& m, const Pose& p)
 {
     const Mat3 r = to_mat3(principal_orientation(m, p.orientation));
     return r * Mat3::diagonal(m.inv_inertia_body) * transpose(r);
 }
-
-} // namespace
 
 bool invert(const Mat3& a, Mat3& out)
 {
@@ -80,7 +76,7 @@ void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool wit
     }
 }
 
-Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h)
+Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h, const Mat3* inv_inertia)
 {
     Side s;
     s.point = x;
@@ -96,7 +92,7 @@ Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h)
     if (s.m->motion == MotionType::Dynamic) {
         s.v = &bodies.get<Velocity>(e);
         s.inv_mass = s.m->inv_mass;
-        s.inv_inertia = world_inv_inertia(*s.m, *s.p);
+        s.inv_inertia = inv_inertia != nullptr ? *inv_inertia : world_inv_inertia(*s.m, *s.p);
     } else if (s.m->motion == MotionType::Kinematic) {
         s.v = &bodies.get<Velocity>(e);
     }

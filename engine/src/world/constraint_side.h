@@ -70,8 +70,12 @@ struct Side {
 /// reusing out's modal buffers. `with_rotation`: the modes' rotation at the anchor is needed too (welds).
 void make_side(Registry& bodies, Entity e, const Vec3& local, double h, bool with_rotation, Side& out);
 /// The side of body e at a contact point x [m], world, already on the (deformed) surface: as make_side,
-/// with the modes evaluated at x's rest position and no rotation.
-[[nodiscard]] Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h);
+/// with the modes evaluated at x's rest position and no rotation. `inv_inertia`: the body's world
+/// inverse inertia when the caller has it (world_inv_inertia), else made here.
+[[nodiscard]] Side contact_side(Registry& bodies, Entity e, const Vec3& x, double h,
+                                const Mat3* inv_inertia = nullptr);
+/// A body's inverse inertia in world axes at its pose [1/(kg·m²)].
+[[nodiscard]] Mat3 world_inv_inertia(const BodyModel& m, const Pose& p);
 /// Orientation of the material at the anchor: the body's, turned by the modal rotation there.
 [[nodiscard]] Quat anchor_orientation(const Side& s);
 /// Velocity of the anchor point [m/s], modes included.

@@ -249,11 +249,12 @@ SoftCoefficients point_soft(double omega, double zeta, double h, const SoftPoint
 }
 
 // One point's rows, not yet warm started.
-SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp, double h)
+SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp, double h,
+                     const std::vector<Mat3>& inv_inertia)
 {
     SoftPoint p;
-    p.a = contact_side(reg, pair.a, cp.point, h);
-    p.b = contact_side(reg, pair.b, cp.point, h);
+    p.a = contact_side(reg, pair.a, cp.point, h, &inv_inertia[pair.a.index]);
+    p.b = contact_side(reg, pair.b, cp.point, h, &inv_inertia[pair.b.index]);
     p.normal = cp.normal;
     tangents(cp.normal, p.tangent);
     p.separation = -cp.depth;
@@ -319,7 +320,7 @@ void make_pair_rows(Registry& reg, ContactWorld& cw, SoftPair& sp, double h)
     for (size_t i = 0; i < sp.count; ++i)
         rows.points[sp.first + i] = rigid && i > 0
                                         ? make_rigid_point(rows.points[sp.first], points[picked[i]])
-                                        : make_point(reg, pair, points[picked[i]], h);
+                                        : make_point(reg, pair, points[picked[i]], h, rows.inv_inertia);
     if (sp.count > 0) {
         const SoftPoint& first = rows.points[sp.first];
         sp.node_a = takes_impulse(first.a) ? pair.a.index : k_no_node;
@@ -573,6 +574,17 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     io.max_penetration = 0.0;
     gather_pairs_with_rows(par, reg, io);
     prepare_modal_substep(reg, ctx.h);
+    // Once per awake body, not once per pair and side (a body in a pile is in about six pairs).
+    rows.inv_inertia.resize(reg.pool().slot_count());
+    if (!rows.pairs.empty())
+        par.for_parts(reg.store<BodyModel>().size(), k_min_rows_per_part,
+                      [&](size_t, size_t begin, size_t end) {
+                          reg.each_in<BodyModel, Pose, Sleep>(
+                              begin, end, [&](Entity e, const BodyModel& m, const Pose& p, const Sleep& s) {
+                                  if (m.motion == MotionType::Dynamic && !s.asleep)
+                                      rows.inv_inertia[e.index] = world_inv_inertia(m, p);
+                              });
+                      });
     // Each pair writes its own rows and only reads the bodies, so the pairs split across the threads
     // with the same bits on any count; the warm start pushes the bodies, so it runs by island with the
     // passes (warm_start_soft_pair).

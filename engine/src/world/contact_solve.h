@@ -91,6 +91,7 @@ struct SoftContacts {
     std::vector<uint32_t> nodes;    ///< Bodies the rows move, sorted (scratch of the heavy-on-light scaling).
     std::vector<uint32_t> nodes_other; ///< The sort's other buffer.
     std::vector<uint32_t> pair_rows;   ///< Per pair of ContactWorld::pairs, the rows it may take (scratch).
+    std::vector<Mat3> inv_inertia;     ///< Per entity index: a body's world I⁻¹ this substep (scratch).
     std::vector<RowTally> tally;       ///< Per part + 1, its pairs with rows and points (scratch).
     std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
 };
