@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Threads: one scene stepped with 1 and 2 threads of the built-in pool. Per run, the scene is loaded,
 // settled for k_settle steps, then k_timed steps are timed: wall time per step (what a host sees on
-// free cores), CPU time of the whole process per step, and the speed-up against 1 thread comes from
-// two rows. Written against the public API only, so the same file measures older builds.
+// free cores), CPU time of the whole process per step, and each stage's ms per step (ms_broadphase...,
+// World::profile()); the speed-up against 1 thread comes from two rows. Written against the public API
+// only, so the same file measures older builds.
 // Usage: threads_bench [benchmark flags] SCENE.json [SCENE.json ...]
 #include "supermodal/scene.h"
 #include "supermodal/world.h"
 
+#include <array>
 #include <benchmark/benchmark.h>
 #include <chrono>
 #include <cstdio>
@@ -40,6 +42,7 @@ void BM_Threads(benchmark::State& st, const std::string& path)
     scene->world.thread_count = threads;
     double ms = 0.0, cpu_ms = 0.0;
     uint64_t hash = 0;
+    std::array<double, static_cast<size_t>(sm::Stage::Count)> stages{}; // ms per timed step, by stage
     for (auto _ : st) {
         sm::Result<sm::World> world = sm::build_world(*scene);
         if (!world) {
@@ -50,8 +53,12 @@ void BM_Threads(benchmark::State& st, const std::string& path)
             world->step();
         const auto start = std::chrono::steady_clock::now();
         const double cpu_start = process_cpu_seconds();
-        for (int i = 0; i < k_timed; ++i)
+        stages.fill(0.0);
+        for (int i = 0; i < k_timed; ++i) {
             world->step();
+            for (size_t s = 0; s < stages.size(); ++s)
+                stages[s] += world->profile().stage_ms[s] / k_timed;
+        }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         st.SetIterationTime(seconds);
@@ -62,6 +69,9 @@ void BM_Threads(benchmark::State& st, const std::string& path)
     st.counters["ms_per_step"] = ms;
     st.counters["cpu_ms_per_step"] = cpu_ms;
     st.counters["bodies"] = static_cast<double>(scene->bodies.size());
+    // Where the step goes, for comparing thread counts stage by stage (World::profile()).
+    for (size_t s = 0; s < stages.size(); ++s)
+        st.counters["ms_" + std::string(sm::stage_name(static_cast<sm::Stage>(s)))] = stages[s];
     // The low 32 bits of the hash: equal across thread counts (a determinism check in the table).
     st.counters["hash_low"] = static_cast<double>(hash & 0xffffffffu);
 }

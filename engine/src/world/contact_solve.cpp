@@ -574,7 +574,8 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     io.max_penetration = 0.0;
     gather_pairs_with_rows(par, reg, io);
     prepare_modal_substep(reg, ctx.h);
-    // Once per awake body, not once per pair and side (a body in a pile is in about six pairs).
+    // Once per awake body, not once per pair and side (a body in a pile is in about six pairs). A pair's
+    // dynamic bodies are awake: the broadphase wakes every sleeper an awake or moving body reaches.
     rows.inv_inertia.resize(reg.pool().slot_count());
     if (!rows.pairs.empty())
         par.for_parts(reg.store<BodyModel>().size(), k_min_rows_per_part,
