@@ -36,14 +36,19 @@ constexpr double k_hessian_cap = 1e12;
 // with r_k = 1, t = r_o^q and sum = 1 + t (‖c‖^(1−2q) = m^(1−2q)·w/sum):
 //   h_kk = (q−1)/m · t · w/sum,  h_oo = (q−1)/m · r_o^(q−2) · w/sum,  h_ko = −(q−1)/m · s_k s_o r_o^(q−1) ·
 //   w/sum.
+// r^(q−2) from t = r^q, as t / r²; at r = 0 it is 0 (q > 2), 1 (q = 2) or unbounded (q < 2, the flat
+// face), and it is capped at k_hessian_cap.
+double capped_power(double r, double t, double q)
+{
+    const double p = r > 0.0 ? t / (r * r) : (q > 2.0 ? 0.0 : (q == 2.0 ? 1.0 : k_hessian_cap));
+    return std::min(p, k_hessian_cap);
+}
+
 void dual_hessian(DualResult& out, double q, int k, double m, double r_o, double t, double w, double sum,
                   const double sign[2])
 {
     const double scale = (q - 1.0) * w / (sum * m);
-    // r_o^(q−2) = t / r_o²; at r_o = 0 it is 0 (q > 2), 1 (q = 2) or unbounded (q < 2, the flat face).
-    double oo = r_o > 0.0 ? t / (r_o * r_o) : (q > 2.0 ? 0.0 : (q == 2.0 ? 1.0 : k_hessian_cap));
-    oo = std::min(oo, k_hessian_cap);
-    const double h_kk = scale * t, h_oo = scale * oo;
+    const double h_kk = scale * t, h_oo = scale * capped_power(r_o, t, q);
     const double h_ko = r_o > 0.0 ? -scale * sign[0] * sign[1] * (t / r_o) : 0.0;
     out.h00 = k == 0 ? h_kk : h_oo;
     out.h11 = k == 0 ? h_oo : h_kk;
@@ -140,15 +145,12 @@ FlatDual flat_dual(const Vec3& c, double eps)
     return out;
 }
 
-// Its Hessian ∂v_i/∂c_j = (q − 1)·(r_i^(q−2)·w·δ_ij − v_i v_j / ‖c‖_q), with r_i^(q−2) capped as in
-// dual_hessian where a flat face makes it unbounded.
+// Its Hessian ∂v_i/∂c_j = (q − 1)·(r_i^(q−2)·w·δ_ij − v_i v_j / ‖c‖_q), r_i^(q−2) capped (capped_power).
 Mat3 flat_hessian(const FlatDual& f)
 {
     Mat3 h{};
     for (int i = 0; i < 3; ++i) {
-        const double r = f.r[i];
-        double diag = r > 0.0 ? f.t[i] / (r * r) : (f.q > 2.0 ? 0.0 : (f.q == 2.0 ? 1.0 : k_hessian_cap));
-        diag = std::min(diag, k_hessian_cap);
+        const double diag = capped_power(f.r[i], f.t[i], f.q);
         for (int j = 0; j < 3; ++j)
             h.m[i][j] = (f.q - 1.0) * ((i == j ? diag * f.w : 0.0) - f.v[i] * f.v[j] / f.norm);
     }

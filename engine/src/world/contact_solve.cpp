@@ -264,8 +264,8 @@ SoftPoint make_point(Registry& reg, const BodyPair& pair, const ContactPoint& cp
 }
 
 // The point's rows on two rigid bodies whose sides at the pair's first point are `first`: the bodies'
-// terms copied from it (one world inertia per body and pair instead of one per point and side), the
-// arms as contact_side() makes them; the same rows as make_point().
+// terms copied from it (no registry lookups per point and side), the arms as contact_side() makes them;
+// the same rows as make_point().
 SoftPoint make_rigid_point(const SoftPoint& first, const ContactPoint& cp)
 {
     auto side_at = [&](const Side& same) {
