@@ -64,6 +64,14 @@ TEST(RenderDef, ValidateRefusesBadSizes)
     d = sm::default_render_def();
     d.samples = 0;
     EXPECT_FALSE(sm::validate(d));
+    for (double bad_span : {-1.0, 0.5, 2000.0, std::nan("")}) {
+        d = sm::default_render_def();
+        d.segment_pixels = bad_span;
+        EXPECT_FALSE(sm::validate(d)) << bad_span;
+    }
+    d = sm::default_render_def();
+    d.segment_pixels = 0.0; // off
+    EXPECT_TRUE(sm::validate(d));
     d = sm::default_render_def();
     d.deformation_scale = std::nan("");
     EXPECT_FALSE(sm::validate(d));
@@ -147,6 +155,56 @@ TEST(Framing, FitsEveryBody)
             // frame: the framing is tight, not a loose bounding sphere.
             EXPECT_GT(fullest, 0.8) << "yaw " << yaw << " pitch " << pitch;
         }
+}
+
+// Under MSAA the bodies are drawn on their own multisampled layer over a single-sample ground and sky.
+// A ball sunk halfway into the ground must still show only its upper half, and the layer must land
+// where the single-sample image draws the ball: the two images differ only along edges. The pixel
+// 0.8 of the ball's apparent radius below its centre shows the ground; with no grid there (nothing to
+// hide the lower half) it shows the ball.
+TEST(Renderer, MultisampledBodiesStayBehindTheGround)
+{
+    sm::World w;
+    sm::BodyDef ball = sm::default_body_def();
+    ball.shape.radii = {0.3, 0.3, 0.3};
+    ball.motion = sm::MotionType::Static;
+    (void)sm::create_body(w, ball);
+    const sm::CameraDef cam{.target = sm::Vec3{0, 0, 0}, .distance = 1.6, .yaw_deg = 0, .pitch_deg = 25};
+    sm::RenderDef one = small_def(), none = small_def();
+    one.samples = 1;
+    none.grid = false;
+    sm::Image layered, single, ungrounded;
+    ASSERT_TRUE(make_renderer().render(w, cam, layered));
+    ASSERT_TRUE(make_renderer(one).render(w, cam, single));
+    ASSERT_TRUE(make_renderer(none).render(w, cam, ungrounded));
+    EXPECT_LT(differing(layered, single, 16), 0.02);
+    const double alpha = std::asin(0.3 / 1.6); // the ball's apparent radius [rad]
+    const double half_fov = 0.5 * cam.fov_deg * std::numbers::pi / 180.0;
+    const int row = 60 + static_cast<int>(std::lround(60.0 * std::tan(0.8 * alpha) / std::tan(half_fov)));
+    const size_t at = (static_cast<size_t>(row) * 160 + 80) * 4;
+    int to_single = 0, to_ungrounded = 0;
+    for (size_t c = 0; c < 3; ++c) {
+        to_single = std::max(to_single, std::abs(layered.rgba[at + c] - single.rgba[at + c]));
+        to_ungrounded = std::max(to_ungrounded, std::abs(layered.rgba[at + c] - ungrounded.rgba[at + c]));
+    }
+    EXPECT_LE(to_single, 16) << "row " << row;
+    EXPECT_GT(to_ungrounded, 32) << "row " << row << ": the lower half would show here";
+}
+
+// Level of detail: bodies small on screen get fewer segments. At 1280x720 the chair at 6 px per
+// segment draws as it does with 32 segments everywhere, but for silhouettes moved by under a pixel.
+TEST(Renderer, LevelOfDetailKeepsThePicture)
+{
+    sm::World w = load("samples/chair_with_dummy.json");
+    sm::RenderDef lod = sm::default_render_def(), full = sm::default_render_def();
+    full.segment_pixels = 0.0;
+    sm::Image a, b;
+    ASSERT_TRUE(make_renderer(lod).render(w, sm::CameraDef{}, a));
+    ASSERT_TRUE(make_renderer(full).render(w, sm::CameraDef{}, b));
+    const double moved = differing(a, b, 16);
+    std::printf("lod vs full: %.5f of the pixels differ by more than 16/255; %.5f at all\n", moved,
+                differing(a, b, 0));
+    EXPECT_LT(moved, 0.002);
 }
 
 TEST(Renderer, TessellatesEachDistinctShapeOnce)

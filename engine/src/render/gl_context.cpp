@@ -142,15 +142,24 @@ Framebuffer::~Framebuffer()
 
 void Framebuffer::release()
 {
-    if (m_fbo != 0)
-        glDeleteFramebuffers(1, &m_fbo);
-    if (m_resolve_fbo != 0)
-        glDeleteFramebuffers(1, &m_resolve_fbo);
-    const GLuint buffers[] = {m_color, m_depth, m_resolve_color};
-    for (GLuint b : buffers)
+    for (GLuint f : {m_fbo, m_ms_fbo, m_layer_fbo})
+        if (f != 0)
+            glDeleteFramebuffers(1, &f);
+    for (GLuint b : {m_color, m_depth, m_ms_color, m_ms_depth})
         if (b != 0)
             glDeleteRenderbuffers(1, &b);
-    m_fbo = m_resolve_fbo = m_color = m_depth = m_resolve_color = 0;
+    if (m_layer_texture != 0)
+        glDeleteTextures(1, &m_layer_texture);
+    m_fbo = m_color = m_depth = m_ms_fbo = m_ms_color = m_ms_depth = m_layer_fbo = m_layer_texture = 0;
+}
+
+// A renderbuffer of the bound framebuffer's size, attached to it.
+void Framebuffer::attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei samples)
+{
+    glGenRenderbuffers(1, &out);
+    glBindRenderbuffer(GL_RENDERBUFFER, out);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, m_width, m_height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, out);
 }
 
 Status Framebuffer::create(int width, int height, int samples)
@@ -161,29 +170,34 @@ Status Framebuffer::create(int width, int height, int samples)
     GLint max_samples = 1;
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
     m_samples = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
-    const GLsizei s = m_samples > 1 ? m_samples : 0;
+    const auto incomplete = [&](const char* which) {
+        return render_error(std::string(which) + " framebuffer incomplete (" + std::to_string(width) + "x" +
+                            std::to_string(height) + ", " + std::to_string(m_samples) + " samples)");
+    };
     glGenFramebuffers(1, &m_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
-    glGenRenderbuffers(1, &m_color);
-    glBindRenderbuffer(GL_RENDERBUFFER, m_color);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_RGBA8, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_color);
-    glGenRenderbuffers(1, &m_depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, m_depth);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_DEPTH_COMPONENT24, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depth);
+    attach_renderbuffer(m_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0);
+    attach_renderbuffer(m_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return render_error("framebuffer incomplete (" + std::to_string(width) + "x" +
-                            std::to_string(height) + ", " + std::to_string(m_samples) + " samples)");
+        return incomplete("image");
     if (m_samples > 1) {
-        glGenFramebuffers(1, &m_resolve_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, m_resolve_fbo);
-        glGenRenderbuffers(1, &m_resolve_color);
-        glBindRenderbuffer(GL_RENDERBUFFER, m_resolve_color);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_resolve_color);
+        glGenFramebuffers(1, &m_ms_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_ms_fbo);
+        attach_renderbuffer(m_ms_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, m_samples);
+        attach_renderbuffer(m_ms_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, m_samples);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return render_error("resolve framebuffer incomplete");
+            return incomplete("multisampled");
+        glGenTextures(1, &m_layer_texture);
+        glBindTexture(GL_TEXTURE_2D, m_layer_texture);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glGenFramebuffers(1, &m_layer_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_layer_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_layer_texture, 0);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return incomplete("layer");
     }
     if (std::string e = gl_errors(); !e.empty())
         return render_error("framebuffer: " + e);
@@ -196,16 +210,23 @@ void Framebuffer::bind() const
     glViewport(0, 0, m_width, m_height);
 }
 
+void Framebuffer::bind_multisampled() const
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, m_ms_fbo);
+    glViewport(0, 0, m_width, m_height);
+}
+
+void Framebuffer::resolve(int x, int y, int width, int height) const
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_ms_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_layer_fbo);
+    glBlitFramebuffer(x, y, x + width, y + height, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+}
+
 void Framebuffer::read(std::vector<uint8_t>& rgba) const
 {
-    GLuint source = m_fbo;
-    if (m_samples > 1) {
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_resolve_fbo);
-        glBlitFramebuffer(0, 0, m_width, m_height, 0, 0, m_width, m_height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        source = m_resolve_fbo;
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     const size_t row = static_cast<size_t>(m_width) * 4;
     rgba.resize(row * static_cast<size_t>(m_height));

@@ -35,7 +35,10 @@ class GlContext
     std::string m_device;
 };
 
-/// Colour + depth render target of a fixed size; `samples` > 1 adds a resolve target.
+/// The image a frame ends in (colour + depth, one sample) and, when `samples` > 1, a multisampled
+/// colour + depth target for the bodies and a single-sample texture their samples resolve into, to be
+/// composited over the image (only bodies have edges that need the samples: the ground and the sky
+/// shade smoothly at one sample).
 class Framebuffer
 {
   public:
@@ -46,17 +49,25 @@ class Framebuffer
 
     /// Needs a current context. samples is clamped to what the driver allows.
     Status create(int width, int height, int samples);
-    /// Binds the framebuffer to draw into, with the viewport set.
+    /// Binds the single-sample image to draw into, with the viewport set to all of it.
     void bind() const;
-    /// Resolves (if multisampled) and reads RGBA8, rows top to bottom.
+    /// Binds the multisampled target (samples() > 1 only), viewport all of it.
+    void bind_multisampled() const;
+    /// Resolves the multisampled target's colour inside a rectangle (GL pixels, origin bottom left)
+    /// into layer_texture(), same place.
+    void resolve(int x, int y, int width, int height) const;
+    [[nodiscard]] GLuint layer_texture() const { return m_layer_texture; }
+    /// Reads the image as RGBA8, rows top to bottom.
     void read(std::vector<uint8_t>& rgba) const;
     [[nodiscard]] int samples() const { return m_samples; }
 
   private:
     void release();
+    void attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei samples);
     int m_width = 0, m_height = 0, m_samples = 1;
-    GLuint m_fbo = 0, m_color = 0, m_depth = 0;
-    GLuint m_resolve_fbo = 0, m_resolve_color = 0;
+    GLuint m_fbo = 0, m_color = 0, m_depth = 0; ///< The image.
+    GLuint m_ms_fbo = 0, m_ms_color = 0, m_ms_depth = 0;
+    GLuint m_layer_fbo = 0, m_layer_texture = 0;
 };
 
 /// The GL error flags as text, or empty when none is set (clears them).

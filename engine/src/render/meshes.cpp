@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "render/meshes.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace supermodal::render
@@ -81,6 +82,19 @@ MeshCache::~MeshCache()
     }
 }
 
+Aabb bounds_of(std::span<const Vec3> points)
+{
+    if (points.empty())
+        return {};
+    Aabb box{points[0], points[0]};
+    for (const Vec3& p : points)
+        for (int k = 0; k < 3; ++k) {
+            box.min[k] = std::min(box.min[k], p[k]);
+            box.max[k] = std::max(box.max[k], p[k]);
+        }
+    return box;
+}
+
 const GpuMesh& MeshCache::get(const ShapeDef& shape, int tessellation, const std::string& key)
 {
     auto it = m_meshes.find(key);
@@ -96,6 +110,7 @@ const GpuMesh& MeshCache::get(const TriangleMesh& mesh, const std::string& key)
         return *it->second;
     auto m = std::make_unique<GpuMesh>();
     m->mesh = mesh;
+    m->bounds = bounds_of(m->mesh.positions);
     face_normals_per_vertex(m->mesh.positions, m->mesh.indices, m->rest_face_normals);
     if (m->mesh.normals.size() != m->mesh.positions.size())
         m->mesh.normals = m->rest_face_normals;
@@ -118,7 +133,7 @@ const GpuMesh& MeshCache::get(const TriangleMesh& mesh, const std::string& key)
 }
 
 ModalSkin::ModalSkin(const GpuMesh& mesh, const ModalBasis* basis, std::vector<Vec3> rest_offsets)
-    : m_mesh(&mesh), m_basis(basis), m_rest_offsets(std::move(rest_offsets))
+    : m_mesh(&mesh), m_basis(basis), m_rest_offsets(std::move(rest_offsets)), m_bounds(mesh.bounds)
 {
     m_weights.reserve(mesh.mesh.positions.size());
     for (const Vec3& p : mesh.mesh.positions)
@@ -167,6 +182,7 @@ void ModalSkin::update(double alpha, double scale)
         m_nodal[n] += m_rest_offsets[n]; // a remoulded rest shape, not scaled with the deformation
     for (size_t i = 0; i < rest.positions.size(); ++i)
         m_positions[i] = rest.positions[i] + interpolate_nodal(m_weights[i], m_nodal);
+    m_bounds = bounds_of(m_positions);
     // Keep the analytic rest normals (sharp superquadric edges stay sharp) and add how much the faces
     // around each vertex turned.
     face_normals_per_vertex(m_positions, rest.indices, m_face_normals);

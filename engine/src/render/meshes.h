@@ -23,7 +23,11 @@ struct GpuMesh {
     GLsizei index_count = 0;
     TriangleMesh mesh;                   ///< The CPU copy: modal skins start from it.
     std::vector<Vec3> rest_face_normals; ///< Area-weighted face normals averaged per vertex, unit.
+    Aabb bounds;                         ///< Of the vertices, shape frame [m].
 };
+
+/// The smallest box holding the points (a zero box at the origin when there are none).
+[[nodiscard]] Aabb bounds_of(std::span<const Vec3> points);
 
 /// Bytes of every ShapeDef field that changes the surface, plus the resolution: equal keys, equal meshes.
 [[nodiscard]] std::string shape_key(const ShapeDef& shape, int tessellation);
@@ -69,6 +73,8 @@ class ModalSkin
     [[nodiscard]] GLuint vao() const { return m_vao; }
     [[nodiscard]] GLsizei index_count() const { return m_mesh->index_count; }
     [[nodiscard]] const ModalBasis* basis() const { return m_basis; }
+    /// Of the vertices as the last update() moved them, shape frame [m].
+    [[nodiscard]] const Aabb& bounds() const { return m_bounds; }
 
   private:
     const GpuMesh* m_mesh;
@@ -79,6 +85,7 @@ class ModalSkin
     std::vector<Vec3> m_rest_offsets; ///< Per lattice node, the moulded rest shape's offsets [m].
     uint64_t m_step = ~uint64_t{0};
     std::vector<Vec3> m_positions, m_face_normals;
+    Aabb m_bounds;
     std::vector<float> m_vertices;
     GLuint m_vao = 0, m_vbo = 0;
 };

@@ -35,6 +35,9 @@ Status validate(const RenderDef& d)
         return bad("samples", "expected 1 to 16, found " + std::to_string(d.samples));
     if (d.tessellation < 8 || d.tessellation > 512)
         return bad("tessellation", "expected 8 to 512, found " + std::to_string(d.tessellation));
+    if (!(d.segment_pixels == 0.0 || (d.segment_pixels >= 1.0 && d.segment_pixels <= 1000.0)))
+        return bad("segment_pixels",
+                   "expected 0 (off) or 1 to 1000 px, found " + std::to_string(d.segment_pixels));
     if (!(std::isfinite(d.deformation_scale) && d.deformation_scale >= 0.0))
         return bad("deformation_scale", "expected a finite number >= 0");
     for (const Vec3& c : {d.sky_top, d.sky_bottom})
@@ -100,6 +103,25 @@ struct BodyEntry {
     std::unique_ptr<render::ModalSkin> skin;
 };
 
+// A body as this frame draws it.
+struct DrawItem {
+    const BodyEntry* entry = nullptr;
+    render::Mat4 model{};
+    Vec3 color{};
+};
+
+// out = m · v for a column-major GL matrix.
+void transform(const render::Mat4& m, const double v[4], double out[4])
+{
+    for (int r = 0; r < 4; ++r)
+        out[r] = m[r] * v[0] + m[4 + r] * v[1] + m[8 + r] * v[2] + m[12 + r] * v[3];
+}
+
+// A rectangle of framebuffer pixels, GL's way (origin at the bottom left).
+struct GlRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
 } // namespace
 
 struct Renderer::Impl {
@@ -114,6 +136,7 @@ struct Renderer::Impl {
     const World* last_world = nullptr;
     GLuint sky_vao = 0, sky_vbo = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
     std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
+    std::vector<DrawItem> items;        ///< This frame's bodies.
 
     ~Impl()
     {
@@ -150,17 +173,17 @@ struct Renderer::Impl {
         return {};
     }
 
-    BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape)
+    BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape, int segments)
     {
         BodyEntry& e = bodies[b];
         auto custom = custom_meshes.find(b);
         const TriangleMesh* given = custom != custom_meshes.end() ? custom->second.get() : nullptr;
         // A given mesh is keyed by its address (held alive by custom_meshes), a shape by its fields.
         std::string key = given != nullptr ? "mesh@" + std::to_string(reinterpret_cast<uintptr_t>(given))
-                                           : render::shape_key(shape, def.tessellation);
+                                           : render::shape_key(shape, segments);
         const ModalBasis* basis = body_modal_basis(world, b);
         if (e.mesh == nullptr || e.key != key) { // new body, a changed shape or a given mesh
-            e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, def.tessellation, key);
+            e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, segments, key);
             e.key = std::move(key);
             e.skin.reset();
         }
@@ -192,10 +215,19 @@ struct Renderer::Impl {
 
     void draw_grid(const World& world, const render::View& view, const Vec3& normal_in, double offset,
                    PoseSource poses);
+    void draw_ground_depth(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
     render::View begin_frame(const World& world, const CameraDef& camera_in, const PixelRect& rect);
-    void draw_bodies(const World& world, PoseSource poses, std::vector<std::pair<Vec3, double>>& out_planes);
+    [[nodiscard]] int segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
+                                   const render::View& view, int viewport_height) const;
+    void collect_bodies(const World& world, PoseSource poses, const render::View& view, int viewport_height,
+                        std::vector<std::pair<Vec3, double>>& out_planes);
+    void draw_bodies() const;
+    [[nodiscard]] GlRect layer_rect(const render::View& view, const GlRect& viewport) const;
+    void draw_body_layer(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes,
+                         const GlRect& viewport);
+    void composite_layer(const GlRect& r, const GlRect& viewport);
     Status render(const World& world, const CameraDef& camera, Image& out, PoseSource poses,
                   const std::function<void()>& overlay, const PixelRect& view);
 };
@@ -226,6 +258,19 @@ GridSquare grid_square(const render::View& view, const Vec3& normal, double offs
     return g;
 }
 
+// The square as a triangle strip into the grid's buffer, left bound.
+void upload_square(GLuint vao, GLuint vbo, const GridSquare& g)
+{
+    float quad[12];
+    const int strip[4] = {0, 1, 3, 2};
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k)
+            quad[i * 3 + k] = static_cast<float>(g.corners[strip[i]][k]);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+}
+
 // NDC triangles for the sky: the viewport less the grid's square when one plane has a grid (with
 // more, their squares' union is not convex and the sky covers the viewport).
 std::vector<float> sky_for(const render::View& view, const std::vector<std::pair<Vec3, double>>& grids,
@@ -254,11 +299,6 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     const GridSquare g = grid_square(view, normal_in, offset);
     const Vec3 &n = g.n, &a0 = g.a0, &a1 = g.a1;
     const Vec3 origin = offset * n;
-    float quad[12];
-    const int strip[4] = {0, 1, 3, 2};
-    for (int i = 0; i < 4; ++i)
-        for (int k = 0; k < 3; ++k)
-            quad[i * 3 + k] = static_cast<float>(g.corners[strip[i]][k]);
     // Minor lines at a power of ten near a tenth of the view distance; major lines every ten.
     const double spacing = std::pow(10.0, std::round(std::log10(view.distance))) / 10.0;
     const float axes[9] = {static_cast<float>(a0.x), static_cast<float>(a0.y), static_cast<float>(a0.z),
@@ -272,10 +312,9 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     glUniform1f(programs.grid_spacing, static_cast<float>(spacing));
     glUniform2f(programs.grid_fade, static_cast<float>(2.5 * view.distance),
                 static_cast<float>(9.0 * view.distance));
-    set_vec3(programs.grid_fog, def.sky_bottom);
-    glBindVertexArray(grid_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, grid_vbo);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+    set_vec3(programs.grid_sky_top, def.sky_top);
+    set_vec3(programs.grid_sky_bottom, def.sky_bottom);
+    upload_square(grid_vao, grid_vbo, g);
     // Pulled slightly towards the eye in depth so bodies resting on the plane do not flicker into it.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
@@ -283,6 +322,23 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     glPolygonOffset(0.5f, 0.5f); // shadows: just in front of the grid, still behind resting bodies
     draw_shadows(world, view, n, offset, a0, a1, poses);
     glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+// The ground planes' squares into the depth buffer only, pulled towards the eye as the grid is.
+void Renderer::Impl::draw_ground_depth(const render::View& view,
+                                       const std::vector<std::pair<Vec3, double>>& planes)
+{
+    glUseProgram(programs.depth);
+    glUniformMatrix4fv(programs.depth_view_proj, 1, GL_FALSE, view.view_proj.data());
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+    for (const auto& [normal, offset] : planes) {
+        upload_square(grid_vao, grid_vbo, grid_square(view, normal, offset));
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void Renderer::Impl::draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
@@ -373,36 +429,160 @@ render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& ca
     return view;
 }
 
-// Every body but the planes, deformed by its modes; the planes go to out_planes (normal, offset).
-void Renderer::Impl::draw_bodies(const World& world, PoseSource poses,
-                                 std::vector<std::pair<Vec3, double>>& out_planes)
+// Every body but the planes, deformed by its modes, into `items`; the planes go to out_planes (normal,
+// offset).
+void Renderer::Impl::collect_bodies(const World& world, PoseSource poses, const render::View& view,
+                                    int viewport_height, std::vector<std::pair<Vec3, double>>& out_planes)
 {
     const double alpha = poses == PoseSource::Interpolated ? world.interpolation_alpha() : 1.0;
+    items.clear();
     for (Entity b : world_bodies(world)) {
         const ShapeDef& shape = body_shape(world, b);
         if (shape.type == ShapeType::Plane) {
             out_planes.emplace_back(shape.plane_normal, shape.plane_offset);
             continue;
         }
-        BodyEntry& e = entry(world, b, shape);
         const bool interpolated = poses == PoseSource::Interpolated;
+        const Vec3 position = interpolated ? body_interpolated_position(world, b) : body_position(world, b);
+        BodyEntry& e = entry(world, b, shape, segments_for(world, b, shape, position, view, viewport_height));
         const render::Mat4 model = render::model_matrix(
-            interpolated ? body_interpolated_position(world, b) : body_position(world, b),
-            interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
-        glUniformMatrix4fv(programs.model, 1, GL_FALSE, model.data());
+            position, interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
         auto color = colors.find(b);
-        set_vec3(programs.color, color != colors.end() ? color->second : index_color(b.index));
         if (e.skin) {
             const BodyModalState state = body_modal_state(world, b);
             e.skin->observe(world.step_count(), state.amplitudes);
             e.skin->update(alpha, def.deformation_scale);
-            glBindVertexArray(e.skin->vao());
-            glDrawElements(GL_TRIANGLES, e.skin->index_count(), GL_UNSIGNED_INT, nullptr);
+        }
+        items.push_back({&e, model, color != colors.end() ? color->second : index_color(b.index)});
+    }
+}
+
+// Segments for a body's tessellation: for a rigid, rounded superquadric (both exponents in [0.5, 1]:
+// no sharp rim or tip, which a chord a few pixels long would cut visibly) the fewest of the levels
+// whose span on screen is at most segment_pixels (its equator's box, seen at the depth of its nearest
+// point); otherwise tessellation. Modal skins are made per mesh, so a modal body keeps one. Levels,
+// not a continuous count, so that few meshes are cached and a body changes mesh only at a level's edge.
+int Renderer::Impl::segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
+                                 const render::View& view, int viewport_height) const
+{
+    const auto rounded = [](double e) { return e >= 0.5 && e <= 1.0; };
+    if (def.segment_pixels <= 0.0 || shape.type != ShapeType::Superquadric || !rounded(shape.epsilon1) ||
+        !rounded(shape.epsilon2) || custom_meshes.count(b) != 0 || body_modal_basis(world, b) != nullptr)
+        return def.tessellation;
+    const double reach = length(shape.radii);
+    const double depth = dot(position - view.eye, view.forward);
+    if (!(depth > reach))
+        return def.tessellation; // reaches the eye's plane: no size on screen to go by
+    const double loop = 4.0 * (shape.radii.x + shape.radii.y); // [m]: its box's, ≥ the equator's length
+    const double pixels = loop * view.fy * 0.5 * viewport_height / (depth - reach);
+    const double wanted = pixels / def.segment_pixels;
+    for (int level : {16, 24, 32, 48, 64, 96, 128, 192, 256, 384})
+        if (level >= wanted || level >= def.tessellation)
+            return std::min(level, def.tessellation);
+    return def.tessellation;
+}
+
+// With the body program in use and its frame uniforms set.
+void Renderer::Impl::draw_bodies() const
+{
+    for (const DrawItem& item : items) {
+        glUniformMatrix4fv(programs.model, 1, GL_FALSE, item.model.data());
+        set_vec3(programs.color, item.color);
+        if (item.entry->skin) {
+            glBindVertexArray(item.entry->skin->vao());
+            glDrawElements(GL_TRIANGLES, item.entry->skin->index_count(), GL_UNSIGNED_INT, nullptr);
         } else {
-            glBindVertexArray(e.mesh->vao);
-            glDrawElements(GL_TRIANGLES, e.mesh->index_count, GL_UNSIGNED_INT, nullptr);
+            glBindVertexArray(item.entry->mesh->vao);
+            glDrawElements(GL_TRIANGLES, item.entry->mesh->index_count, GL_UNSIGNED_INT, nullptr);
         }
     }
+}
+
+// The pixels the bodies can cover: their drawn vertices' boxes projected, a pixel more on each side,
+// within the viewport; all of it when a box reaches behind the eye; empty without bodies.
+GlRect Renderer::Impl::layer_rect(const render::View& view, const GlRect& viewport) const
+{
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const DrawItem& item : items) {
+        const Aabb& box = item.entry->skin ? item.entry->skin->bounds() : item.entry->mesh->bounds;
+        for (int c = 0; c < 8; ++c) {
+            const double local[4] = {(c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+                                     (c & 4) ? box.max.z : box.min.z, 1.0};
+            double world_point[4], clip[4];
+            transform(item.model, local, world_point);
+            transform(view.view_proj, world_point, clip);
+            if (!(clip[3] > 1e-9))
+                return viewport;
+            for (int k = 0; k < 2; ++k) {
+                lo[k] = std::min(lo[k], clip[k] / clip[3]);
+                hi[k] = std::max(hi[k], clip[k] / clip[3]);
+            }
+        }
+    }
+    if (items.empty())
+        return {};
+    const auto pixel = [](double ndc, int start, int size) { return start + (0.5 * ndc + 0.5) * size; };
+    const double x0 = std::max(pixel(lo[0], viewport.x, viewport.width) - 1.0, double(viewport.x));
+    const double y0 = std::max(pixel(lo[1], viewport.y, viewport.height) - 1.0, double(viewport.y));
+    const double x1 =
+        std::min(pixel(hi[0], viewport.x, viewport.width) + 1.0, double(viewport.x + viewport.width));
+    const double y1 =
+        std::min(pixel(hi[1], viewport.y, viewport.height) + 1.0, double(viewport.y + viewport.height));
+    if (!(x1 > x0 && y1 > y0))
+        return {};
+    const int ix = static_cast<int>(std::floor(x0)), iy = static_cast<int>(std::floor(y0));
+    return {ix, iy, static_cast<int>(std::ceil(x1)) - ix, static_cast<int>(std::ceil(y1)) - iy};
+}
+
+// Under MSAA only the bodies are drawn at every sample (the ground and sky shade smoothly at one, and
+// were already drawn into the image): inside the pixels they can cover, over the ground's depth, into
+// a transparent multisampled target, resolved and blended over the image.
+void Renderer::Impl::draw_body_layer(const render::View& view,
+                                     const std::vector<std::pair<Vec3, double>>& planes,
+                                     const GlRect& viewport)
+{
+    const GlRect r = layer_rect(view, viewport);
+    if (r.width <= 0 || r.height <= 0)
+        return;
+    framebuffer.bind_multisampled();
+    glViewport(viewport.x, viewport.y, viewport.width, viewport.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r.x, r.y, r.width, r.height);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    draw_ground_depth(view, planes);
+    glEnable(GL_CULL_FACE);
+    glUseProgram(programs.body);
+    draw_bodies();
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    framebuffer.resolve(r.x, r.y, r.width, r.height);
+    composite_layer(r, viewport);
+}
+
+// The resolved layer blended over the image inside r.
+void Renderer::Impl::composite_layer(const GlRect& r, const GlRect& viewport)
+{
+    framebuffer.bind();
+    glViewport(viewport.x, viewport.y, viewport.width, viewport.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r.x, r.y, r.width, r.height);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(programs.layer);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, framebuffer.layer_texture());
+    glUniform1i(programs.layer_texture, 0);
+    const float cover[6] = {-1, -1, 3, -1, -1, 3}; // one triangle over the viewport
+    glBindVertexArray(sky_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, sky_vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof cover, cover, GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
@@ -426,17 +606,20 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     }
     const render::View view = begin_frame(world, camera_in, rect);
     std::vector<std::pair<Vec3, double>> planes;
-    draw_bodies(world, poses, planes);
-    glDisable(GL_CULL_FACE);
-    if (def.grid) {
-        if (planes.empty())
-            planes.emplace_back(Vec3{0, 1, 0}, 0.0);
-        for (const auto& [normal, offset] : planes)
-            draw_grid(world, view, normal, offset, poses);
-    } else {
+    collect_bodies(world, poses, view, rect.height, planes);
+    if (!def.grid)
         planes.clear();
-    }
+    else if (planes.empty())
+        planes.emplace_back(Vec3{0, 1, 0}, 0.0);
+    const bool layered = framebuffer.samples() > 1;
+    if (!layered)
+        draw_bodies(); // first: the ground and the sky then shade only what they show
+    glDisable(GL_CULL_FACE);
+    for (const auto& [normal, offset] : planes)
+        draw_grid(world, view, normal, offset, poses);
     draw_sky(sky_for(view, planes, rect));
+    if (layered)
+        draw_body_layer(view, planes, {rect.x, def.height - rect.y - rect.height, rect.width, rect.height});
     glBindVertexArray(0);
     out.width = def.width;
     out.height = def.height;

@@ -62,16 +62,24 @@ void main() {
 })";
 
 // Ground grid on a plane: u_axes = the plane's two in-plane unit axes (columns 0, 1) and its normal
-// (column 2); minor lines every u_spacing, major every 10; fades into fog far away.
+// (column 2); minor lines every u_spacing, major every 10; far away it fades into the sky's colour at
+// the same height on screen, so that where the grid ends no edge is left (the sky and the ground are
+// drawn at one sample even under MSAA: an edge there would show its steps).
 const char* k_grid_vs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_view_proj;
 out vec3 v_world;
-void main() { v_world = a_position; gl_Position = u_view_proj * vec4(a_position, 1.0); })";
+out vec2 v_clip_yw;
+void main() {
+    v_world = a_position;
+    gl_Position = u_view_proj * vec4(a_position, 1.0);
+    v_clip_yw = gl_Position.yw;
+})";
 const char* k_grid_fs = R"(#version 300 es
 precision highp float;
 in vec3 v_world;
-uniform vec3 u_eye, u_origin, u_fog;
+in vec2 v_clip_yw;
+uniform vec3 u_eye, u_origin, u_sky_top, u_sky_bottom;
 uniform mat3 u_axes;
 uniform float u_spacing;
 uniform vec2 u_fade;
@@ -90,7 +98,8 @@ void main() {
     c = mix(c, vec3(0.45, 0.45, 0.44), lines(uv, u_spacing * 10.0) * 0.8);
     float dist = length(v_world - u_eye);
     float fade = smoothstep(u_fade.x, u_fade.y, dist);
-    o_color = vec4(mix(c, u_fog, fade), 1.0);
+    vec3 sky = mix(u_sky_bottom, u_sky_top, clamp(0.5 * v_clip_yw.x / v_clip_yw.y + 0.5, 0.0, 1.0));
+    o_color = vec4(mix(c, sky, fade), 1.0);
 })";
 
 // Blob shadows: one quad per body on the plane, multiplied into the grid (blend DST_COLOR, ZERO);
@@ -110,6 +119,22 @@ void main() {
     float falloff = 1.0 - smoothstep(0.2, 1.0, length(v_shadow.xy));
     o_color = vec4(vec3(1.0 - v_shadow.z * falloff), 1.0);
 })";
+
+// The ground's depth alone (the grid's vertex shader), so that bodies under the ground stay hidden in
+// the multisampled body layer.
+const char* k_depth_fs = R"(#version 300 es
+void main() {})";
+
+// The resolved body layer over the image, pixel for pixel: its colours are premultiplied by coverage
+// (cleared to transparent), so blending ONE, ONE_MINUS_SRC_ALPHA lays the edges over what is behind.
+const char* k_layer_vs = R"(#version 300 es
+layout(location = 0) in vec2 a_ndc;
+void main() { gl_Position = vec4(a_ndc, 0.0, 1.0); })";
+const char* k_layer_fs = R"(#version 300 es
+precision highp float;
+uniform highp sampler2D u_layer;
+out vec4 o_color;
+void main() { o_color = texelFetch(u_layer, ivec2(gl_FragCoord.xy), 0); })";
 
 Status compile(GLenum type, const char* source, GLuint& out)
 {
@@ -162,6 +187,12 @@ Status compile_programs(Programs& p)
         return s;
     if (Status s = link(k_shadow_vs, k_shadow_fs, p.shadow); !s)
         return s;
+    if (Status s = link(k_grid_vs, k_depth_fs, p.depth); !s)
+        return s;
+    if (Status s = link(k_layer_vs, k_layer_fs, p.layer); !s)
+        return s;
+    p.depth_view_proj = glGetUniformLocation(p.depth, "u_view_proj");
+    p.layer_texture = glGetUniformLocation(p.layer, "u_layer");
     p.shadow_view_proj = glGetUniformLocation(p.shadow, "u_view_proj");
     p.sky_top = glGetUniformLocation(p.sky, "u_top");
     p.sky_bottom = glGetUniformLocation(p.sky, "u_bottom");
@@ -178,13 +209,14 @@ Status compile_programs(Programs& p)
     p.grid_origin = glGetUniformLocation(p.grid, "u_origin");
     p.grid_spacing = glGetUniformLocation(p.grid, "u_spacing");
     p.grid_fade = glGetUniformLocation(p.grid, "u_fade");
-    p.grid_fog = glGetUniformLocation(p.grid, "u_fog");
+    p.grid_sky_top = glGetUniformLocation(p.grid, "u_sky_top");
+    p.grid_sky_bottom = glGetUniformLocation(p.grid, "u_sky_bottom");
     return {};
 }
 
 void delete_programs(Programs& p)
 {
-    for (GLuint prog : {p.sky, p.body, p.grid, p.shadow})
+    for (GLuint prog : {p.sky, p.body, p.grid, p.shadow, p.depth, p.layer})
         if (prog != 0)
             glDeleteProgram(prog);
     p = Programs{};

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The GLSL ES 3.00 programs a frame uses: sky gradient, lit bodies, ground grid, blob shadows. Internal.
+// The GLSL ES 3.00 programs a frame uses: sky gradient, lit bodies, ground grid, blob shadows, the
+// ground's depth and the body layer's composite. Internal.
 #pragma once
 
 #include "supermodal/result.h"
@@ -11,19 +12,21 @@ namespace supermodal::render
 
 /// Compiled programs and their uniform locations.
 struct Programs {
-    GLuint sky = 0, body = 0, grid = 0, shadow = 0;
+    GLuint sky = 0, body = 0, grid = 0, shadow = 0, depth = 0, layer = 0;
     // sky
     GLint sky_top = -1, sky_bottom = -1;
     // body
     GLint model = -1, view_proj = -1, color = -1, eye = -1, key_dir = -1, fill_dir = -1, flat = -1;
     // grid
     GLint grid_view_proj = -1, grid_eye = -1, grid_axes = -1, grid_origin = -1, grid_spacing = -1,
-          grid_fade = -1, grid_fog = -1;
+          grid_fade = -1, grid_sky_top = -1, grid_sky_bottom = -1;
     // shadow
     GLint shadow_view_proj = -1;
+    // ground depth, body layer
+    GLint depth_view_proj = -1, layer_texture = -1;
 };
 
-/// Compiles and links all three; errors carry the compiler's log.
+/// Compiles and links them all; errors carry the compiler's log.
 Status compile_programs(Programs& out);
 void delete_programs(Programs& programs);
 

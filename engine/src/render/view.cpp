@@ -119,6 +119,8 @@ View make_view(const CameraDef& camera, double aspect, double scene_radius)
     const double far_plane = 14.0 * v.distance + 2.0 * scene_radius;
     const double fy = 1.0 / std::tan(0.5 * std::clamp(camera.fov_deg, 1.0, 150.0) * k_deg);
     const double fx = fy / aspect;
+    v.forward = f;
+    v.fy = fy;
     // P · V written out. Eye coordinates: x_e = s·(p − eye), y_e = u·(p − eye), z_e = −f·(p − eye);
     // clip = (fx·x_e, fy·y_e, A·z_e + B, −z_e) with GL's A, B mapping [−near, −far] to [−1, 1].
     const double A = (far_plane + near_plane) / (near_plane - far_plane);

@@ -16,7 +16,9 @@ using Mat4 = std::array<float, 16>;
 /// A resolved camera: where the eye is and the matrices of a frame.
 struct View {
     Vec3 eye{}, target{};
-    double distance = 1.0; ///< |eye − target| [m].
+    double distance = 1.0;  ///< |eye − target| [m].
+    Vec3 forward{0, 0, -1}; ///< Unit, from the eye towards the target.
+    double fy = 1.0;        ///< Projection's vertical scale: NDC y per unit of height over depth [-].
     Mat4 view_proj{};
 };
 
