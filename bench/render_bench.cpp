@@ -78,7 +78,8 @@ struct PngSink {
 };
 
 // Args: MSAA samples, PNG files (PngSink's mode), tessellation segments (the most a body gets), 1 =
-// ground grid, level of detail: segment span on screen [px] (0: every body at `segments`).
+// ground grid, level of detail: the mesh's largest gap to the surface on screen [1/100 px] (0: every
+// body at `segments`).
 void BM_CaptureChair(benchmark::State& st)
 {
     Setup s = chair();
@@ -88,7 +89,7 @@ void BM_CaptureChair(benchmark::State& st)
     def.samples = static_cast<int>(st.range(0));
     def.tessellation = static_cast<int>(st.range(2));
     def.grid = st.range(3) != 0;
-    def.segment_pixels = static_cast<double>(st.range(4));
+    def.gap_pixels = 0.01 * static_cast<double>(st.range(4));
     sm::Result<sm::Renderer> r = sm::Renderer::create(def);
     if (!r) {
         st.SkipWithError(r.error().message().c_str());
@@ -121,27 +122,27 @@ void BM_CaptureChair(benchmark::State& st)
 }
 BENCHMARK(BM_CaptureChair)
     ->ArgNames({"samples", "png", "segments", "grid", "lod"})
-    ->Args({1, -1, 32, 1, 6})
-    ->Args({4, -1, 32, 1, 6})
+    ->Args({1, -1, 32, 1, 25})
+    ->Args({4, -1, 32, 1, 25})
     ->Args({4, -1, 32, 1, 0})
     ->Args({1, -1, 32, 1, 0})
-    ->Args({1, 0, 32, 1, 6})
-    ->Args({4, 0, 32, 1, 6})
-    ->Args({1, 1, 32, 1, 6})
-    ->Args({4, 1, 32, 1, 6})
-    ->Args({1, 2, 32, 1, 6})
-    ->Args({4, 2, 32, 1, 6})
-    ->Args({1, -1, 48, 1, 6})
-    ->Args({4, -1, 48, 1, 6})
-    ->Args({1, -1, 48, 0, 6})
-    ->Args({1, -1, 32, 0, 6})
-    ->Args({4, -1, 32, 0, 6})
-    ->Args({2, -1, 32, 1, 6})
+    ->Args({1, 0, 32, 1, 25})
+    ->Args({4, 0, 32, 1, 25})
+    ->Args({1, 1, 32, 1, 25})
+    ->Args({4, 1, 32, 1, 25})
+    ->Args({1, 2, 32, 1, 25})
+    ->Args({4, 2, 32, 1, 25})
+    ->Args({1, -1, 48, 1, 25})
+    ->Args({4, -1, 48, 1, 25})
+    ->Args({1, -1, 48, 0, 25})
+    ->Args({1, -1, 32, 0, 25})
+    ->Args({4, -1, 32, 0, 25})
+    ->Args({2, -1, 32, 1, 25})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 // A thousand ellipsoids (10 cm, a 10x10x10 block 2 m wide, turned at random) seen whole at 1280x720,
-// 4x MSAA: many bodies small on screen. Args: level of detail [px] (0: all at 32 segments).
+// 4x MSAA: many bodies small on screen. Args: level of detail [1/100 px] (0: all at 32 segments).
 void BM_CapturePile(benchmark::State& st)
 {
     sm::World world;
@@ -153,7 +154,7 @@ void BM_CapturePile(benchmark::State& st)
         (void)sm::create_body(world, ball);
     }
     sm::RenderDef def = sm::default_render_def();
-    def.segment_pixels = static_cast<double>(st.range(0));
+    def.gap_pixels = 0.01 * static_cast<double>(st.range(0));
     sm::Result<sm::Renderer> r = sm::Renderer::create(def);
     if (!r) {
         st.SkipWithError(r.error().message().c_str());
@@ -174,7 +175,7 @@ void BM_CapturePile(benchmark::State& st)
         benchmark::Counter(static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
     st.SetLabel(r->device_name());
 }
-BENCHMARK(BM_CapturePile)->ArgName("lod")->Arg(6)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CapturePile)->ArgName("lod")->Arg(25)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 } // namespace
 

@@ -64,13 +64,13 @@ TEST(RenderDef, ValidateRefusesBadSizes)
     d = sm::default_render_def();
     d.samples = 0;
     EXPECT_FALSE(sm::validate(d));
-    for (double bad_span : {-1.0, 0.5, 2000.0, std::nan("")}) {
+    for (double bad_gap : {-1.0, 0.001, 200.0, std::nan("")}) {
         d = sm::default_render_def();
-        d.segment_pixels = bad_span;
-        EXPECT_FALSE(sm::validate(d)) << bad_span;
+        d.gap_pixels = bad_gap;
+        EXPECT_FALSE(sm::validate(d)) << bad_gap;
     }
     d = sm::default_render_def();
-    d.segment_pixels = 0.0; // off
+    d.gap_pixels = 0.0; // off
     EXPECT_TRUE(sm::validate(d));
     d = sm::default_render_def();
     d.deformation_scale = std::nan("");
@@ -191,20 +191,29 @@ TEST(Renderer, MultisampledBodiesStayBehindTheGround)
     EXPECT_GT(to_ungrounded, 32) << "row " << row << ": the lower half would show here";
 }
 
-// Level of detail: bodies small on screen get fewer segments. At 1280x720 the chair at 6 px per
-// segment draws as it does with 32 segments everywhere, but for silhouettes moved by under a pixel.
+// Level of detail and curvature spacing: at 1280x720 the chair drawn with the defaults (each rigid body
+// at the fewest segments within a quarter pixel of its surface) is no further from a fine render (96
+// segments everywhere) than the chair drawn with even 32-segment meshes, the renderer's meshes before.
 TEST(Renderer, LevelOfDetailKeepsThePicture)
 {
     sm::World w = load("samples/chair_with_dummy.json");
-    sm::RenderDef lod = sm::default_render_def(), full = sm::default_render_def();
-    full.segment_pixels = 0.0;
-    sm::Image a, b;
-    ASSERT_TRUE(make_renderer(lod).render(w, sm::CameraDef{}, a));
-    ASSERT_TRUE(make_renderer(full).render(w, sm::CameraDef{}, b));
-    const double moved = differing(a, b, 16);
-    std::printf("lod vs full: %.5f of the pixels differ by more than 16/255; %.5f at all\n", moved,
-                differing(a, b, 0));
-    EXPECT_LT(moved, 0.002);
+    for (int i = 0; i < 200; ++i)
+        w.step();
+    sm::RenderDef fine = sm::default_render_def();
+    fine.gap_pixels = 0.0;
+    fine.tessellation = 96;
+    sm::Image reference, lod, even;
+    ASSERT_TRUE(make_renderer(fine).render(w, sm::CameraDef{}, reference));
+    ASSERT_TRUE(make_renderer(sm::default_render_def()).render(w, sm::CameraDef{}, lod));
+    sm::Renderer r = make_renderer(sm::default_render_def());
+    for (sm::Entity b : sm::world_bodies(w))
+        if (sm::body_shape(w, b).type == sm::ShapeType::Superquadric)
+            r.set_body_mesh(b, std::make_shared<sm::TriangleMesh>(sm::tessellate(sm::body_shape(w, b), 32)));
+    ASSERT_TRUE(r.render(w, sm::CameraDef{}, even));
+    const double lod_off = differing(lod, reference, 16), even_off = differing(even, reference, 16);
+    std::printf("pixels off by more than 16/255 from the fine render: level of detail %.5f, even 32 %.5f\n",
+                lod_off, even_off);
+    EXPECT_LE(lod_off, even_off);
 }
 
 TEST(Renderer, TessellatesEachDistinctShapeOnce)

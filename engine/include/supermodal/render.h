@@ -40,11 +40,12 @@ struct RenderDef {
     int height = 720;                      ///< Image height [px], in [16, 8192].
     int samples = 4;                       ///< Multisample anti-aliasing samples per pixel, 1 (off) to 16.
     int tessellation = 32;                 ///< Mesh segments around a body's equator, in [8, 512]; with
-                                           ///< segment_pixels > 0 the most a rigid body gets.
-    double segment_pixels = 6.0;           ///< Level of detail [px], 0 or in [1, 1000]: a rigid
-                                           ///< superquadric gets the fewest of 12, 16, 24, 32, 48, 64, ...
-                                           ///< (up to tessellation) segments whose span on screen is at
-                                           ///< most this; 0: every body at tessellation.
+                                           ///< gap_pixels > 0 the most a rigid superquadric gets.
+    double gap_pixels = 0.25;              ///< Level of detail [px], 0 or in [0.01, 100]: a rigid
+                                           ///< superquadric gets the fewest of 8, 12, 16, 20, 24, 32,
+                                           ///< 48, ... (up to tessellation) segments whose mesh stays
+                                           ///< within this of its surface on screen; 0: every body at
+                                           ///< tessellation.
     bool grid = true;                      ///< Draw static planes (or, with none, y = 0) as a grid.
     Vec3 sky_top{0.58, 0.68, 0.80};        ///< Background at the top of the image, RGB in [0, 1].
     Vec3 sky_bottom{0.90, 0.91, 0.93};     ///< Background at the bottom, RGB in [0, 1].
@@ -52,8 +53,8 @@ struct RenderDef {
                                            ///< (> 1 exaggerates millimetre bending to see it).
     RenderFault fault = RenderFault::None; ///< Test hook; leave None.
 };
-/// The documented starting point: 1280×720, 4× MSAA, up to 32 segments of 6 px, grid on, true
-/// deformation.
+/// The documented starting point: 1280×720, 4× MSAA, up to 32 segments within a quarter pixel of the
+/// surface, grid on, true deformation.
 [[nodiscard]] SM_API RenderDef default_render_def();
 /// Checks the ranges in the field comments.
 [[nodiscard]] SM_API Status validate(const RenderDef& def);

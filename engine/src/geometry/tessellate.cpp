@@ -135,15 +135,54 @@ void connect_grid(TriangleMesh& mesh, uint32_t ring_count, uint32_t loop)
         add_triangle(mesh, north, v(ring_count - 1, j), v(ring_count - 1, j + 1));
 }
 
-TriangleMesh tessellate_superquadric(const ShapeDef& shape, int resolution)
+// Angle [rad] between two directions of the plane.
+double turn(double ax, double ay, double bx, double by)
+{
+    return std::atan2(std::abs(ax * by - ay * bx), ax * bx + ay * by);
+}
+
+// Replaces a table's arc length by the measure in which even steps leave an even gap between chord and
+// curve: ∫ √κ ds (a chord over a stretch of measure w stands off the curve by about w²/8), plus a
+// quarter of a circle's share of arc so that flat stretches still get vertices. Each vertex's turn is
+// split between its two segments; at the quadrant's ends the curve continues mirrored.
+void weight_by_curvature(QuadrantTable& t, double a, double b)
+{
+    const size_t n = t.arc.size() - 1;
+    const double flat = 0.25 / std::sqrt(std::max(2.0 * t.length() / std::numbers::pi, 1e-300));
+    std::vector<double> dx(n), dy(n), theta(n + 1, 0.0);
+    for (size_t k = 0; k < n; ++k) {
+        dx[k] = a * (t.x[k + 1] - t.x[k]);
+        dy[k] = b * (t.y[k + 1] - t.y[k]);
+    }
+    theta[0] = 2.0 * turn(0.0, 1.0, dx[0], dy[0]);          // across the x axis: the tangent is +y
+    theta[n] = 2.0 * turn(dx[n - 1], dy[n - 1], -1.0, 0.0); // across the y axis: the tangent is −x
+    for (size_t k = 1; k < n; ++k)
+        theta[k] = turn(dx[k - 1], dy[k - 1], dx[k], dy[k]);
+    double w = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+        const double length = t.arc[k + 1] - t.arc[k];
+        const double share =
+            0.5 * (k == 0 ? 0.5 * theta[0] : theta[k]) + 0.5 * (k + 1 == n ? 0.5 * theta[n] : theta[k + 1]);
+        t.arc[k] = w;
+        w += std::sqrt(share * length) + flat * length;
+    }
+    t.arc[n] = w;
+}
+
+TriangleMesh tessellate_superquadric(const ShapeDef& shape, int resolution, MeshSpacing spacing)
 {
     const SphericalProduct sp = make_spherical_product(shape, k_quadrant_segments);
-    const double step = sp.loop_length() / resolution;
-    const std::vector<LoopPoint> loop = loop_vertices(sp, step);
-    const double lm = sp.meridian_length();
+    SphericalProduct spaced = sp; // the measure vertices are spaced in; their points come from sp
+    if (spacing == MeshSpacing::Curvature) {
+        weight_by_curvature(spaced.horizontal, sp.radii.x, sp.radii.y);
+        weight_by_curvature(spaced.meridian, sp.support_mean, sp.radii.z);
+    }
+    const double step = spaced.loop_length() / resolution;
+    const std::vector<LoopPoint> loop = loop_vertices(spaced, step);
+    const double lm = spaced.meridian_length();
     const double meridian_step =
         std::clamp(step, lm / (k_max_meridian_share * resolution), lm / (k_min_meridian_share * resolution));
-    const std::vector<MeridianPoint> rings = ring_vertices(sp, meridian_step);
+    const std::vector<MeridianPoint> rings = ring_vertices(spaced, meridian_step);
     TriangleMesh mesh;
     const size_t vertex_count = 2 + rings.size() * loop.size();
     mesh.positions.reserve(vertex_count);
@@ -340,6 +379,11 @@ SurfacePoint spherical_product_point(const SphericalProduct& sp, const RingPoint
 
 TriangleMesh tessellate(const ShapeDef& shape, int resolution)
 {
+    return tessellate(shape, resolution, MeshSpacing::EqualArc);
+}
+
+TriangleMesh tessellate(const ShapeDef& shape, int resolution, MeshSpacing spacing)
+{
     resolution = std::clamp(resolution, k_min_resolution, k_max_resolution);
     if (shape.type == ShapeType::Hyperquadric)
         return tessellate_hyperquadric(shape, resolution);
@@ -348,7 +392,25 @@ TriangleMesh tessellate(const ShapeDef& shape, int resolution)
     const Vec3& a = shape.radii;
     if (!(is_finite(a) && a.x > 0.0 && a.y > 0.0 && a.z > 0.0))
         return {};
-    return tessellate_superquadric(shape, resolution);
+    return tessellate_superquadric(shape, resolution, spacing);
+}
+
+double tessellation_gap(const ShapeDef& shape, int resolution)
+{
+    const Vec3& a = shape.radii;
+    if (shape.type != ShapeType::Superquadric || resolution < 1 ||
+        !(is_finite(a) && a.x > 0.0 && a.y > 0.0 && a.z > 0.0))
+        return 0.0;
+    SphericalProduct sp = make_spherical_product(shape, k_quadrant_segments);
+    weight_by_curvature(sp.horizontal, sp.radii.x, sp.radii.y);
+    weight_by_curvature(sp.meridian, sp.support_mean, sp.radii.z);
+    // The steps tessellate_superquadric takes, in the measure: a chord over w stands off by about w²/8,
+    // and inside a triangle the loop's and the meridian's sag add up.
+    const double step = sp.loop_length() / resolution;
+    const double lm = sp.meridian_length();
+    const double meridian_step =
+        std::clamp(step, lm / (k_max_meridian_share * resolution), lm / (k_min_meridian_share * resolution));
+    return (step * step + meridian_step * meridian_step) / 8.0;
 }
 
 double mesh_volume(const TriangleMesh& mesh)

@@ -95,12 +95,13 @@ Aabb bounds_of(std::span<const Vec3> points)
     return box;
 }
 
-const GpuMesh& MeshCache::get(const ShapeDef& shape, int tessellation, const std::string& key)
+const GpuMesh& MeshCache::get(const ShapeDef& shape, int tessellation, MeshSpacing spacing,
+                              const std::string& key)
 {
     auto it = m_meshes.find(key);
     if (it != m_meshes.end())
         return *it->second;
-    return get(tessellate(shape, tessellation), key);
+    return get(tessellate(shape, tessellation, spacing), key);
 }
 
 const GpuMesh& MeshCache::get(const TriangleMesh& mesh, const std::string& key)

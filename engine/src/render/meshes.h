@@ -45,7 +45,7 @@ class MeshCache
     MeshCache& operator=(const MeshCache&) = delete;
 
     /// The mesh of this shape, tessellated and uploaded on first use.
-    const GpuMesh& get(const ShapeDef& shape, int tessellation, const std::string& key);
+    const GpuMesh& get(const ShapeDef& shape, int tessellation, MeshSpacing spacing, const std::string& key);
     /// A given mesh (shape frame), uploaded on first use of `key`; per-vertex normals are made from
     /// the faces where the mesh has none.
     const GpuMesh& get(const TriangleMesh& mesh, const std::string& key);

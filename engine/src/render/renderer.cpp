@@ -35,9 +35,8 @@ Status validate(const RenderDef& d)
         return bad("samples", "expected 1 to 16, found " + std::to_string(d.samples));
     if (d.tessellation < 8 || d.tessellation > 512)
         return bad("tessellation", "expected 8 to 512, found " + std::to_string(d.tessellation));
-    if (!(d.segment_pixels == 0.0 || (d.segment_pixels >= 1.0 && d.segment_pixels <= 1000.0)))
-        return bad("segment_pixels",
-                   "expected 0 (off) or 1 to 1000 px, found " + std::to_string(d.segment_pixels));
+    if (!(d.gap_pixels == 0.0 || (d.gap_pixels >= 0.01 && d.gap_pixels <= 100.0)))
+        return bad("gap_pixels", "expected 0 (off) or 0.01 to 100 px, found " + std::to_string(d.gap_pixels));
     if (!(std::isfinite(d.deformation_scale) && d.deformation_scale >= 0.0))
         return bad("deformation_scale", "expected a finite number >= 0");
     for (const Vec3& c : {d.sky_top, d.sky_bottom})
@@ -137,6 +136,7 @@ struct Renderer::Impl {
     GLuint sky_vao = 0, sky_vbo = 0, grid_vao = 0, grid_vbo = 0, shadow_vao = 0, shadow_vbo = 0;
     std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
     std::vector<DrawItem> items;        ///< This frame's bodies.
+    std::map<std::string, double> gaps; ///< tessellation_gap at one segment [m], per shape key.
 
     ~Impl()
     {
@@ -178,12 +178,16 @@ struct Renderer::Impl {
         BodyEntry& e = bodies[b];
         auto custom = custom_meshes.find(b);
         const TriangleMesh* given = custom != custom_meshes.end() ? custom->second.get() : nullptr;
-        // A given mesh is keyed by its address (held alive by custom_meshes), a shape by its fields.
-        std::string key = given != nullptr ? "mesh@" + std::to_string(reinterpret_cast<uintptr_t>(given))
-                                           : render::shape_key(shape, segments);
         const ModalBasis* basis = body_modal_basis(world, b);
+        // A given mesh is keyed by its address (held alive by custom_meshes), a shape by its fields.
+        // Rigid bodies take the spacing that gives the closest silhouette for their segments; modal ones
+        // keep even triangles, which bend evenly.
+        const MeshSpacing spacing = basis == nullptr ? MeshSpacing::Curvature : MeshSpacing::EqualArc;
+        std::string key = given != nullptr ? "mesh@" + std::to_string(reinterpret_cast<uintptr_t>(given))
+                                           : render::shape_key(shape, segments) +
+                                                 (spacing == MeshSpacing::Curvature ? "/curvature" : "");
         if (e.mesh == nullptr || e.key != key) { // new body, a changed shape or a given mesh
-            e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, segments, key);
+            e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, segments, spacing, key);
             e.key = std::move(key);
             e.skin.reset();
         }
@@ -220,7 +224,7 @@ struct Renderer::Impl {
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
     render::View begin_frame(const World& world, const CameraDef& camera_in, const PixelRect& rect);
     [[nodiscard]] int segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
-                                   const render::View& view, int viewport_height) const;
+                                   const render::View& view, int viewport_height);
     void collect_bodies(const World& world, PoseSource poses, const render::View& view, int viewport_height,
                         std::vector<std::pair<Vec3, double>>& out_planes);
     void draw_bodies() const;
@@ -457,27 +461,27 @@ void Renderer::Impl::collect_bodies(const World& world, PoseSource poses, const 
     }
 }
 
-// Segments for a body's tessellation: for a rigid, rounded superquadric (both exponents in [0.5, 1]:
-// no sharp rim or tip, which a chord a few pixels long would cut visibly) the fewest of the levels
-// whose span on screen is at most segment_pixels (its equator's box, seen at the depth of its nearest
-// point); otherwise tessellation. Modal skins are made per mesh, so a modal body keeps one. Levels,
-// not a continuous count, so that few meshes are cached and a body changes mesh only at a level's edge.
+// Segments for a body's tessellation: for a rigid superquadric the fewest of the levels whose gap to
+// the surface (tessellation_gap, per shape once) stays within gap_pixels on screen at the depth of the
+// body's nearest possible point; otherwise tessellation (modal skins are made per mesh, so a modal body
+// keeps one). Levels, not a continuous count, so that few meshes are cached and a body changes mesh
+// only where it crosses a level.
 int Renderer::Impl::segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
-                                 const render::View& view, int viewport_height) const
+                                 const render::View& view, int viewport_height)
 {
-    const auto rounded = [](double e) { return e >= 0.5 && e <= 1.0; };
-    if (def.segment_pixels <= 0.0 || shape.type != ShapeType::Superquadric || !rounded(shape.epsilon1) ||
-        !rounded(shape.epsilon2) || custom_meshes.count(b) != 0 || body_modal_basis(world, b) != nullptr)
+    if (def.gap_pixels <= 0.0 || shape.type != ShapeType::Superquadric || custom_meshes.count(b) != 0 ||
+        body_modal_basis(world, b) != nullptr)
         return def.tessellation;
     const double reach = length(shape.radii);
     const double depth = dot(position - view.eye, view.forward);
     if (!(depth > reach))
         return def.tessellation; // reaches the eye's plane: no size on screen to go by
-    const double loop = 4.0 * (shape.radii.x + shape.radii.y); // [m]: its box's, ≥ the equator's length
-    const double pixels = loop * view.fy * 0.5 * viewport_height / (depth - reach);
-    const double wanted = pixels / def.segment_pixels;
-    for (int level : {16, 24, 32, 48, 64, 96, 128, 192, 256, 384})
-        if (level >= wanted || level >= def.tessellation)
+    const double pixels_per_metre = view.fy * 0.5 * viewport_height / (depth - reach);
+    auto [it, fresh] = gaps.try_emplace(render::shape_key(shape, 0), 0.0);
+    if (fresh)
+        it->second = tessellation_gap(shape, 1); // [m], falls as 1 / segments²
+    for (int level : {8, 12, 16, 20, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512})
+        if (level >= def.tessellation || it->second * pixels_per_metre <= def.gap_pixels * level * level)
             return std::min(level, def.tessellation);
     return def.tessellation;
 }
