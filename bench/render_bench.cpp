@@ -79,8 +79,9 @@ struct PngSink {
 
 // Args: MSAA samples, PNG files (PngSink's mode), tessellation segments (the most a body gets), 1 =
 // ground grid, level of detail: the mesh's largest gap to the surface on screen [1/100 px] (0: every
-// body at `segments`).
-void BM_CaptureChair(benchmark::State& st)
+// body at `segments`). With `orbit` the camera turns by a degree every frame (nothing of the last
+// frame's view can be reused), otherwise it stands still.
+void capture_chair(benchmark::State& st, bool orbit)
 {
     Setup s = chair();
     sm::RenderDef def = sm::default_render_def();
@@ -99,11 +100,13 @@ void BM_CaptureChair(benchmark::State& st)
     const std::vector<sm::Entity> bodies = sm::world_bodies(s.world);
     for (size_t i = 0; i < bodies.size(); ++i)
         r->set_body_color(bodies[i], colors[i]);
-    const sm::CameraDef camera = sm::frame_bodies(s.world, s.scene.camera, 1280.0 / 720.0);
+    sm::CameraDef camera = sm::frame_bodies(s.world, s.scene.camera, 1280.0 / 720.0);
     PngSink png(static_cast<int>(st.range(1)));
     sm::Image image;
     const double cpu0 = process_cpu_seconds();
     for (auto _ : st) {
+        if (orbit)
+            camera.yaw_deg += 1.0;
         if (!r->render(s.world, camera, image))
             st.SkipWithError("render failed");
         benchmark::DoNotOptimize(image.rgba.data());
@@ -120,6 +123,19 @@ void BM_CaptureChair(benchmark::State& st)
         benchmark::Counter(static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
     st.SetLabel(r->device_name());
 }
+void BM_CaptureChair(benchmark::State& st)
+{
+    capture_chair(st, false);
+}
+void BM_CaptureChairOrbit(benchmark::State& st)
+{
+    capture_chair(st, true);
+}
+BENCHMARK(BM_CaptureChairOrbit)
+    ->ArgNames({"samples", "png", "segments", "grid", "lod"})
+    ->Args({4, -1, 32, 1, 25})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_CaptureChair)
     ->ArgNames({"samples", "png", "segments", "grid", "lod"})
     ->Args({1, -1, 32, 1, 25})

@@ -142,15 +142,16 @@ Framebuffer::~Framebuffer()
 
 void Framebuffer::release()
 {
-    for (GLuint f : {m_fbo, m_ms_fbo, m_layer_fbo})
+    for (GLuint f : {m_fbo, m_ms_fbo, m_layer_fbo, m_saved_fbo})
         if (f != 0)
             glDeleteFramebuffers(1, &f);
-    for (GLuint b : {m_color, m_depth, m_ms_color, m_ms_depth})
+    for (GLuint b : {m_color, m_depth, m_ms_color, m_ms_depth, m_saved_color, m_saved_depth})
         if (b != 0)
             glDeleteRenderbuffers(1, &b);
     if (m_layer_texture != 0)
         glDeleteTextures(1, &m_layer_texture);
     m_fbo = m_color = m_depth = m_ms_fbo = m_ms_color = m_ms_depth = m_layer_fbo = m_layer_texture = 0;
+    m_saved_fbo = m_saved_color = m_saved_depth = 0;
 }
 
 // A renderbuffer of the bound framebuffer's size, attached to it.
@@ -198,6 +199,12 @@ Status Framebuffer::create(int width, int height, int samples)
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_layer_texture, 0);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return incomplete("layer");
+        glGenFramebuffers(1, &m_saved_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_saved_fbo);
+        attach_renderbuffer(m_saved_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0);
+        attach_renderbuffer(m_saved_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return incomplete("background copy");
     }
     if (std::string e = gl_errors(); !e.empty())
         return render_error("framebuffer: " + e);
@@ -222,6 +229,29 @@ void Framebuffer::resolve(int x, int y, int width, int height) const
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_layer_fbo);
     glBlitFramebuffer(x, y, x + width, y + height, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
+}
+
+namespace
+{
+
+void copy_all(GLuint from, GLuint to, int width, int height)
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
+                      GL_NEAREST);
+}
+
+} // namespace
+
+void Framebuffer::save_background() const
+{
+    copy_all(m_fbo, m_saved_fbo, m_width, m_height);
+}
+
+void Framebuffer::restore_background() const
+{
+    copy_all(m_saved_fbo, m_fbo, m_width, m_height);
 }
 
 void Framebuffer::read(std::vector<uint8_t>& rgba) const

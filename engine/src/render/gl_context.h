@@ -57,6 +57,10 @@ class Framebuffer
     /// into layer_texture(), same place.
     void resolve(int x, int y, int width, int height) const;
     [[nodiscard]] GLuint layer_texture() const { return m_layer_texture; }
+    /// Copies the image's colour and depth aside (samples() > 1 only) ...
+    void save_background() const;
+    /// ... and back, all of it.
+    void restore_background() const;
     /// Reads the image as RGBA8, rows top to bottom.
     void read(std::vector<uint8_t>& rgba) const;
     [[nodiscard]] int samples() const { return m_samples; }
@@ -68,6 +72,7 @@ class Framebuffer
     GLuint m_fbo = 0, m_color = 0, m_depth = 0; ///< The image.
     GLuint m_ms_fbo = 0, m_ms_color = 0, m_ms_depth = 0;
     GLuint m_layer_fbo = 0, m_layer_texture = 0;
+    GLuint m_saved_fbo = 0, m_saved_color = 0, m_saved_depth = 0; ///< save_background()'s copy.
 };
 
 /// The GL error flags as text, or empty when none is set (clears them).

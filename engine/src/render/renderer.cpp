@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Renderer: EGL context + framebuffer + programs + mesh cache; draws sky, bodies, then ground grids.
+// Renderer: EGL context + framebuffer + programs + mesh cache. One sample: bodies, ground grids, then
+// sky. Under MSAA: ground grids and sky at one sample, then the bodies on a multisampled layer.
 #include "render/gl_context.h"
 #include "render/meshes.h"
 #include "render/shaders.h"
@@ -137,6 +138,7 @@ struct Renderer::Impl {
     std::vector<float> shadow_vertices; ///< Per vertex: position (3), quad (u, v), strength.
     std::vector<DrawItem> items;        ///< This frame's bodies.
     std::map<std::string, double> gaps; ///< tessellation_gap at one segment [m], per shape key.
+    std::vector<float> background_key;  ///< What the saved background shows (MSAA only); empty: none.
 
     ~Impl()
     {
@@ -217,8 +219,11 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
     }
 
-    void draw_grid(const World& world, const render::View& view, const Vec3& normal_in, double offset,
-                   PoseSource poses);
+    void draw_grid(const render::View& view, const Vec3& normal_in, double offset);
+    void draw_ground_shadows(const World& world, const render::View& view,
+                             const std::vector<std::pair<Vec3, double>>& planes, PoseSource poses);
+    void draw_background(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes,
+                         const PixelRect& rect);
     void draw_ground_depth(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
@@ -297,8 +302,7 @@ std::vector<float> sky_for(const render::View& view, const std::vector<std::pair
 
 } // namespace
 
-void Renderer::Impl::draw_grid(const World& world, const render::View& view, const Vec3& normal_in,
-                               double offset, PoseSource poses)
+void Renderer::Impl::draw_grid(const render::View& view, const Vec3& normal_in, double offset)
 {
     const GridSquare g = grid_square(view, normal_in, offset);
     const Vec3 &n = g.n, &a0 = g.a0, &a1 = g.a1;
@@ -323,8 +327,19 @@ void Renderer::Impl::draw_grid(const World& world, const render::View& view, con
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glPolygonOffset(0.5f, 0.5f); // shadows: just in front of the grid, still behind resting bodies
-    draw_shadows(world, view, n, offset, a0, a1, poses);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+// Every plane's blob shadows, over the grids already drawn.
+void Renderer::Impl::draw_ground_shadows(const World& world, const render::View& view,
+                                         const std::vector<std::pair<Vec3, double>>& planes, PoseSource poses)
+{
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(0.5f, 0.5f); // just in front of the grid, still behind resting bodies
+    for (const auto& [normal, offset] : planes) {
+        const GridSquare g = grid_square(view, normal, offset);
+        draw_shadows(world, view, g.n, offset, g.a0, g.a1, poses);
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
@@ -365,8 +380,8 @@ void Renderer::Impl::draw_shadows(const World& world, const render::View& view, 
         const Vec3 across = h - Vec3{std::abs(n.x) * h.x, std::abs(n.y) * h.y, std::abs(n.z) * h.z};
         const double radius = length(across) + 1e-6;
         const double height = dot(c, n) - offset;
-        if (height < 0.0 || length(c - view.target) > 20.0 * view.distance)
-            continue; // under the plane, or too far to see
+        if (height < 0.0 || length(c - view.target) > 12.0 * view.distance)
+            continue; // under the plane, or too far to see (and off the grid's square, 14 distances wide)
         const double strength = 0.5 * std::clamp(1.0 - height / (4.0 * radius + 0.2), 0.0, 1.0);
         if (strength <= 0.0)
             continue;
@@ -589,6 +604,34 @@ void Renderer::Impl::composite_layer(const GlRect& r, const GlRect& viewport)
     glDisable(GL_SCISSOR_TEST);
 }
 
+// Under MSAA: the grids and the sky, which depend only on the view, drawn once and copied back (colour
+// and depth) for as long as the camera, the view rectangle and the planes stay the same: a still camera
+// then pays for neither. Shadows and bodies are drawn over it every frame.
+void Renderer::Impl::draw_background(const render::View& view,
+                                     const std::vector<std::pair<Vec3, double>>& planes,
+                                     const PixelRect& rect)
+{
+    std::vector<float> key(view.view_proj.begin(), view.view_proj.end());
+    for (int v : {rect.x, rect.y, rect.width, rect.height})
+        key.push_back(static_cast<float>(v));
+    for (const auto& [normal, offset] : planes)
+        key.insert(key.end(), {static_cast<float>(normal.x), static_cast<float>(normal.y),
+                               static_cast<float>(normal.z), static_cast<float>(offset)});
+    if (key == background_key) {
+        framebuffer.restore_background();
+        framebuffer.bind();
+        glViewport(rect.x, def.height - rect.y - rect.height, rect.width, rect.height);
+        return;
+    }
+    for (const auto& [normal, offset] : planes)
+        draw_grid(view, normal, offset);
+    draw_sky(sky_for(view, planes, rect));
+    framebuffer.save_background();
+    framebuffer.bind();
+    glViewport(rect.x, def.height - rect.y - rect.height, rect.width, rect.height);
+    background_key = std::move(key);
+}
+
 Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
                               const std::function<void()>& overlay, const PixelRect& view_in)
 {
@@ -615,15 +658,20 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         planes.clear();
     else if (planes.empty())
         planes.emplace_back(Vec3{0, 1, 0}, 0.0);
-    const bool layered = framebuffer.samples() > 1;
-    if (!layered)
-        draw_bodies(); // first: the ground and the sky then shade only what they show
     glDisable(GL_CULL_FACE);
-    for (const auto& [normal, offset] : planes)
-        draw_grid(world, view, normal, offset, poses);
-    draw_sky(sky_for(view, planes, rect));
-    if (layered)
+    if (framebuffer.samples() > 1) {
+        draw_background(view, planes, rect);
+        draw_ground_shadows(world, view, planes, poses);
         draw_body_layer(view, planes, {rect.x, def.height - rect.y - rect.height, rect.width, rect.height});
+    } else {
+        glEnable(GL_CULL_FACE);
+        draw_bodies(); // first: the ground and the sky then shade only what they show
+        glDisable(GL_CULL_FACE);
+        for (const auto& [normal, offset] : planes)
+            draw_grid(view, normal, offset);
+        draw_ground_shadows(world, view, planes, poses);
+        draw_sky(sky_for(view, planes, rect));
+    }
     glBindVertexArray(0);
     out.width = def.width;
     out.height = def.height;
