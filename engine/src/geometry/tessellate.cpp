@@ -169,20 +169,33 @@ void weight_by_curvature(QuadrantTable& t, double a, double b)
     t.arc[n] = w;
 }
 
+// The tables in the measure vertices are spaced in (their points stay those of sp), and the steps along
+// the loop and the meridian for `resolution` segments round the loop.
+struct Spacing {
+    SphericalProduct tables;
+    double loop_step = 0.0, meridian_step = 0.0;
+};
+
+Spacing make_spacing(const SphericalProduct& sp, int resolution, MeshSpacing spacing)
+{
+    Spacing out{sp};
+    if (spacing == MeshSpacing::Curvature) {
+        weight_by_curvature(out.tables.horizontal, sp.radii.x, sp.radii.y);
+        weight_by_curvature(out.tables.meridian, sp.support_mean, sp.radii.z);
+    }
+    out.loop_step = out.tables.loop_length() / resolution;
+    const double lm = out.tables.meridian_length();
+    out.meridian_step = std::clamp(out.loop_step, lm / (k_max_meridian_share * resolution),
+                                   lm / (k_min_meridian_share * resolution));
+    return out;
+}
+
 TriangleMesh tessellate_superquadric(const ShapeDef& shape, int resolution, MeshSpacing spacing)
 {
     const SphericalProduct sp = make_spherical_product(shape, k_quadrant_segments);
-    SphericalProduct spaced = sp; // the measure vertices are spaced in; their points come from sp
-    if (spacing == MeshSpacing::Curvature) {
-        weight_by_curvature(spaced.horizontal, sp.radii.x, sp.radii.y);
-        weight_by_curvature(spaced.meridian, sp.support_mean, sp.radii.z);
-    }
-    const double step = spaced.loop_length() / resolution;
-    const std::vector<LoopPoint> loop = loop_vertices(spaced, step);
-    const double lm = spaced.meridian_length();
-    const double meridian_step =
-        std::clamp(step, lm / (k_max_meridian_share * resolution), lm / (k_min_meridian_share * resolution));
-    const std::vector<MeridianPoint> rings = ring_vertices(spaced, meridian_step);
+    const Spacing spaced = make_spacing(sp, resolution, spacing);
+    const std::vector<LoopPoint> loop = loop_vertices(spaced.tables, spaced.loop_step);
+    const std::vector<MeridianPoint> rings = ring_vertices(spaced.tables, spaced.meridian_step);
     TriangleMesh mesh;
     const size_t vertex_count = 2 + rings.size() * loop.size();
     mesh.positions.reserve(vertex_count);
@@ -401,16 +414,11 @@ double tessellation_gap(const ShapeDef& shape, int resolution)
     if (shape.type != ShapeType::Superquadric || resolution < 1 ||
         !(is_finite(a) && a.x > 0.0 && a.y > 0.0 && a.z > 0.0))
         return 0.0;
-    SphericalProduct sp = make_spherical_product(shape, k_quadrant_segments);
-    weight_by_curvature(sp.horizontal, sp.radii.x, sp.radii.y);
-    weight_by_curvature(sp.meridian, sp.support_mean, sp.radii.z);
-    // The steps tessellate_superquadric takes, in the measure: a chord over w stands off by about w²/8,
-    // and inside a triangle the loop's and the meridian's sag add up.
-    const double step = sp.loop_length() / resolution;
-    const double lm = sp.meridian_length();
-    const double meridian_step =
-        std::clamp(step, lm / (k_max_meridian_share * resolution), lm / (k_min_meridian_share * resolution));
-    return (step * step + meridian_step * meridian_step) / 8.0;
+    const Spacing spaced =
+        make_spacing(make_spherical_product(shape, k_quadrant_segments), resolution, MeshSpacing::Curvature);
+    // A chord over a step w of the measure stands off by about w²/8; inside a triangle the loop's and the
+    // meridian's sag add up.
+    return (spaced.loop_step * spaced.loop_step + spaced.meridian_step * spaced.meridian_step) / 8.0;
 }
 
 double mesh_volume(const TriangleMesh& mesh)

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// EGL display + OpenGL ES 3.0 context on Mesa's surfaceless platform, and the framebuffer a frame is
-// drawn into (multisampled, resolved into a single-sample one for read-back). Internal to render/.
+// EGL display + OpenGL ES 3.0 context on Mesa's surfaceless platform, and the framebuffers a frame is
+// drawn into (the single-sample image; under MSAA the bodies' multisampled layer). Internal to render/.
 #pragma once
 
 #include "supermodal/result.h"
