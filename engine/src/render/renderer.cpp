@@ -122,6 +122,17 @@ struct GlRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
 
+// A view rectangle (rows counted from the top of an image `image_height` tall) GL's way.
+GlRect gl_rect(const PixelRect& r, int image_height)
+{
+    return {r.x, image_height - r.y - r.height, r.width, r.height};
+}
+
+void set_viewport(const GlRect& r)
+{
+    glViewport(r.x, r.y, r.width, r.height);
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -139,6 +150,7 @@ struct Renderer::Impl {
     std::vector<DrawItem> items;        ///< This frame's bodies.
     std::map<std::string, double> gaps; ///< tessellation_gap at one segment [m], per shape key.
     std::vector<float> background_key;  ///< What the saved background shows (MSAA only); empty: none.
+    std::vector<float> drawn_key;       ///< The background last drawn and not saved.
 
     ~Impl()
     {
@@ -219,11 +231,11 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
     }
 
-    void draw_grid(const render::View& view, const Vec3& normal_in, double offset);
+    void draw_grid(const render::View& view, const Vec3& normal_in, double offset, const GlRect& viewport);
     void draw_ground_shadows(const World& world, const render::View& view,
                              const std::vector<std::pair<Vec3, double>>& planes, PoseSource poses);
     void draw_background(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes,
-                         const PixelRect& rect);
+                         const GlRect& viewport);
     void draw_ground_depth(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes);
     void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
                       const Vec3& a0, const Vec3& a1, PoseSource poses);
@@ -283,7 +295,7 @@ void upload_square(GLuint vao, GLuint vbo, const GridSquare& g)
 // NDC triangles for the sky: the viewport less the grid's square when one plane has a grid (with
 // more, their squares' union is not convex and the sky covers the viewport).
 std::vector<float> sky_for(const render::View& view, const std::vector<std::pair<Vec3, double>>& grids,
-                           const PixelRect& rect)
+                           const GlRect& viewport)
 {
     std::vector<render::ClipPoint> ground;
     if (grids.size() == 1) {
@@ -297,12 +309,13 @@ std::vector<float> sky_for(const render::View& view, const std::vector<std::pair
         }
     }
     // One pixel into the square, so that the two edges' rounding leaves no gap.
-    return render::sky_triangles(ground, 2.0 / std::min(rect.width, rect.height));
+    return render::sky_triangles(ground, 2.0 / std::min(viewport.width, viewport.height));
 }
 
 } // namespace
 
-void Renderer::Impl::draw_grid(const render::View& view, const Vec3& normal_in, double offset)
+void Renderer::Impl::draw_grid(const render::View& view, const Vec3& normal_in, double offset,
+                               const GlRect& viewport)
 {
     const GridSquare g = grid_square(view, normal_in, offset);
     const Vec3 &n = g.n, &a0 = g.a0, &a1 = g.a1;
@@ -317,9 +330,13 @@ void Renderer::Impl::draw_grid(const render::View& view, const Vec3& normal_in, 
     set_vec3(programs.grid_eye, view.eye);
     set_vec3(programs.grid_origin, origin);
     glUniformMatrix3fv(programs.grid_axes, 1, GL_FALSE, axes);
-    glUniform1f(programs.grid_spacing, static_cast<float>(spacing));
-    glUniform2f(programs.grid_fade, static_cast<float>(2.5 * view.distance),
-                static_cast<float>(9.0 * view.distance));
+    glUniform1f(programs.grid_inv_spacing, static_cast<float>(1.0 / spacing));
+    // The fade runs from 2.5 to 9 view distances: t = dist * x + y.
+    const double fade_span = 6.5 * view.distance;
+    glUniform2f(programs.grid_fade, static_cast<float>(1.0 / fade_span), static_cast<float>(-2.5 / 6.5));
+    // The sky's height, 0 at the viewport's bottom row and 1 at its top: gl_FragCoord.y * x + y.
+    glUniform2f(programs.grid_sky_row, 1.0f / static_cast<float>(viewport.height),
+                -static_cast<float>(viewport.y) / static_cast<float>(viewport.height));
     set_vec3(programs.grid_sky_top, def.sky_top);
     set_vec3(programs.grid_sky_bottom, def.sky_bottom);
     upload_square(grid_vao, grid_vbo, g);
@@ -428,8 +445,7 @@ render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& ca
     glClearColor(static_cast<float>(def.sky_bottom.x), static_cast<float>(def.sky_bottom.y),
                  static_cast<float>(def.sky_bottom.z), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glViewport(rect.x, def.height - rect.y - rect.height, rect.width,
-               rect.height); // GL counts from the bottom
+    set_viewport(gl_rect(rect, def.height));
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
@@ -564,7 +580,7 @@ void Renderer::Impl::draw_body_layer(const render::View& view,
     if (r.width <= 0 || r.height <= 0)
         return;
     framebuffer.bind_multisampled();
-    glViewport(viewport.x, viewport.y, viewport.width, viewport.height);
+    set_viewport(viewport);
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
@@ -583,7 +599,7 @@ void Renderer::Impl::draw_body_layer(const render::View& view,
 void Renderer::Impl::composite_layer(const GlRect& r, const GlRect& viewport)
 {
     framebuffer.bind();
-    glViewport(viewport.x, viewport.y, viewport.width, viewport.height);
+    set_viewport(viewport);
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
     glDisable(GL_DEPTH_TEST);
@@ -604,32 +620,36 @@ void Renderer::Impl::composite_layer(const GlRect& r, const GlRect& viewport)
     glDisable(GL_SCISSOR_TEST);
 }
 
-// Under MSAA: the grids and the sky, which depend only on the view, drawn once and copied back (colour
-// and depth) for as long as the camera, the view rectangle and the planes stay the same: a still camera
-// then pays for neither. Shadows and bodies are drawn over it every frame.
+// Under MSAA: the grids and the sky, which depend only on the view, saved (colour and depth) once
+// the camera, the view rectangle and the planes have stayed the same for two frames, and copied back
+// while they stay so: a still camera then pays for neither, a moving one for no copy. Shadows and
+// bodies are drawn over it every frame.
 void Renderer::Impl::draw_background(const render::View& view,
                                      const std::vector<std::pair<Vec3, double>>& planes,
-                                     const PixelRect& rect)
+                                     const GlRect& viewport)
 {
     std::vector<float> key(view.view_proj.begin(), view.view_proj.end());
-    for (int v : {rect.x, rect.y, rect.width, rect.height})
+    for (int v : {viewport.x, viewport.y, viewport.width, viewport.height})
         key.push_back(static_cast<float>(v));
     for (const auto& [normal, offset] : planes)
         key.insert(key.end(), {static_cast<float>(normal.x), static_cast<float>(normal.y),
                                static_cast<float>(normal.z), static_cast<float>(offset)});
     if (key == background_key) {
         framebuffer.restore_background();
-        framebuffer.bind();
-        glViewport(rect.x, def.height - rect.y - rect.height, rect.width, rect.height);
-        return;
+    } else {
+        for (const auto& [normal, offset] : planes)
+            draw_grid(view, normal, offset, viewport);
+        draw_sky(sky_for(view, planes, viewport));
+        if (key == drawn_key) {
+            framebuffer.save_background();
+            background_key = std::move(key);
+            drawn_key.clear();
+        } else {
+            drawn_key = std::move(key);
+        }
     }
-    for (const auto& [normal, offset] : planes)
-        draw_grid(view, normal, offset);
-    draw_sky(sky_for(view, planes, rect));
-    framebuffer.save_background();
     framebuffer.bind();
-    glViewport(rect.x, def.height - rect.y - rect.height, rect.width, rect.height);
-    background_key = std::move(key);
+    set_viewport(viewport);
 }
 
 Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Image& out, PoseSource poses,
@@ -652,6 +672,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         last_world = &world;
     }
     const render::View view = begin_frame(world, camera_in, rect);
+    const GlRect viewport = gl_rect(rect, def.height);
     std::vector<std::pair<Vec3, double>> planes;
     collect_bodies(world, poses, view, rect.height, planes);
     if (!def.grid)
@@ -660,17 +681,17 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         planes.emplace_back(Vec3{0, 1, 0}, 0.0);
     glDisable(GL_CULL_FACE);
     if (framebuffer.samples() > 1) {
-        draw_background(view, planes, rect);
+        draw_background(view, planes, viewport);
         draw_ground_shadows(world, view, planes, poses);
-        draw_body_layer(view, planes, {rect.x, def.height - rect.y - rect.height, rect.width, rect.height});
+        draw_body_layer(view, planes, viewport);
     } else {
         glEnable(GL_CULL_FACE);
         draw_bodies(); // first: the ground and the sky then shade only what they show
         glDisable(GL_CULL_FACE);
         for (const auto& [normal, offset] : planes)
-            draw_grid(view, normal, offset);
+            draw_grid(view, normal, offset, viewport);
         draw_ground_shadows(world, view, planes, poses);
-        draw_sky(sky_for(view, planes, rect));
+        draw_sky(sky_for(view, planes, viewport));
     }
     glBindVertexArray(0);
     out.width = def.width;

@@ -37,8 +37,8 @@ void main() {
     gl_Position = u_view_proj * w;
 })";
 // Key + fill directional lights, hemisphere ambient, a little Blinn-Phong; lit in linear space with
-// gamma 2 (square in, square root out) instead of 2.2: two pow() calls per pixel cost llvmpipe more
-// than the difference shows.
+// gamma 2 (square in, square root out) instead of 2.2: pow() costs llvmpipe more than the difference
+// shows (the highlight's power of 40 is five squarings and a product for the same reason).
 const char* k_body_fs = R"(#version 300 es
 precision highp float;
 in vec3 v_world, v_normal;
@@ -54,51 +54,57 @@ void main() {
     float fill = max(dot(n, u_fill_dir), 0.0);
     vec3 ambient = mix(vec3(0.30, 0.27, 0.24), vec3(0.55, 0.62, 0.75), 0.5 + 0.5 * n.y);
     vec3 h = normalize(u_key_dir + v);
-    float spec = pow(max(dot(n, h), 0.0), 40.0) * 0.18 * step(0.0, dot(n, u_key_dir));
+    float s2 = max(dot(n, h), 0.0);
+    s2 *= s2;
+    float s8 = s2 * s2;
+    s8 *= s8;
+    float s32 = s8 * s8;
+    s32 *= s32;
+    float spec = s32 * s8 * 0.18 * step(0.0, dot(n, u_key_dir)); // (n.h)^40
     float edge = 1.0 - max(dot(n, v), 0.0);
     float rim = edge * edge * edge * 0.08;
     vec3 lit = base * (0.45 * ambient + 0.85 * key * vec3(1.0, 0.97, 0.92) + 0.25 * fill) + spec + rim;
     o_color = vec4(sqrt(lit), 1.0);
 })";
 
-// Ground grid on a plane: u_axes = the plane's two in-plane unit axes (columns 0, 1) and its normal
-// (column 2); minor lines every u_spacing, major every 10; far away it fades into the sky's colour at
-// the same height on screen, so that where the grid ends no edge is left (the sky and the ground are
-// drawn at one sample even under MSAA: an edge there would show its steps).
+// Ground grid on a plane, in the plane's (u, v) measured in minor spacings: u_axes = the plane's two
+// in-plane unit axes (columns 0, 1); minor lines every unit, major every ten; far away it fades into
+// the sky's colour at the same height on screen, so that where the grid ends no edge is left (the sky
+// and the ground are drawn at one sample even under MSAA: an edge there would show its steps). It
+// covers half the picture at one sample per pixel, so the fragment shader keeps to multiplies: (u, v)
+// and the offset from the eye come interpolated, one reciprocal serves both line widths, and the sky's
+// height comes from the window row.
 const char* k_grid_vs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_view_proj;
-out vec3 v_world;
-out vec2 v_clip_yw;
+uniform vec3 u_eye, u_origin;
+uniform mat3 u_axes;
+uniform float u_inv_spacing;
+out vec2 v_uv;
+out vec3 v_from_eye;
 void main() {
-    v_world = a_position;
+    vec3 r = a_position - u_origin;
+    v_uv = vec2(dot(r, u_axes[0]), dot(r, u_axes[1])) * u_inv_spacing;
+    v_from_eye = a_position - u_eye;
     gl_Position = u_view_proj * vec4(a_position, 1.0);
-    v_clip_yw = gl_Position.yw;
 })";
 const char* k_grid_fs = R"(#version 300 es
 precision highp float;
-in vec3 v_world;
-in vec2 v_clip_yw;
-uniform vec3 u_eye, u_origin, u_sky_top, u_sky_bottom;
-uniform mat3 u_axes;
-uniform float u_spacing;
-uniform vec2 u_fade;
+in vec2 v_uv;
+in vec3 v_from_eye;
+uniform vec3 u_sky_top, u_sky_bottom;
+uniform vec2 u_fade, u_sky_row;
 out vec4 o_color;
-float lines(vec2 uv, float spacing) {
-    vec2 g = uv / spacing;
-    vec2 w = fwidth(g);
-    vec2 d = abs(fract(g - 0.5) - 0.5) / max(w, vec2(1e-6));
-    return 1.0 - min(min(d.x, d.y), 1.0);
-}
 void main() {
-    vec3 r = v_world - u_origin;
-    vec2 uv = vec2(dot(r, u_axes[0]), dot(r, u_axes[1]));
+    vec2 per_pixel = 1.0 / max(fwidth(v_uv), vec2(1e-6));
+    vec2 minor = abs(fract(v_uv - 0.5) - 0.5) * per_pixel;
+    vec2 major = abs(fract(v_uv * 0.1 - 0.5) - 0.5) * (10.0 * per_pixel);
     vec3 c = vec3(0.80, 0.80, 0.78);
-    c = mix(c, vec3(0.62, 0.62, 0.60), lines(uv, u_spacing) * 0.6);
-    c = mix(c, vec3(0.45, 0.45, 0.44), lines(uv, u_spacing * 10.0) * 0.8);
-    float dist = length(v_world - u_eye);
-    float fade = smoothstep(u_fade.x, u_fade.y, dist);
-    vec3 sky = mix(u_sky_bottom, u_sky_top, clamp(0.5 * v_clip_yw.x / v_clip_yw.y + 0.5, 0.0, 1.0));
+    c = mix(c, vec3(0.62, 0.62, 0.60), (1.0 - min(min(minor.x, minor.y), 1.0)) * 0.6);
+    c = mix(c, vec3(0.45, 0.45, 0.44), (1.0 - min(min(major.x, major.y), 1.0)) * 0.8);
+    float t = clamp(length(v_from_eye) * u_fade.x + u_fade.y, 0.0, 1.0);
+    float fade = t * t * (3.0 - 2.0 * t);
+    vec3 sky = mix(u_sky_bottom, u_sky_top, clamp(gl_FragCoord.y * u_sky_row.x + u_sky_row.y, 0.0, 1.0));
     o_color = vec4(mix(c, sky, fade), 1.0);
 })";
 
@@ -120,8 +126,11 @@ void main() {
     o_color = vec4(vec3(1.0 - v_shadow.z * falloff), 1.0);
 })";
 
-// The ground's depth alone (the grid's vertex shader), so that bodies under the ground stay hidden in
-// the multisampled body layer.
+// The ground's depth alone, so that bodies under the ground stay hidden in the multisampled body layer.
+const char* k_depth_vs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_proj;
+void main() { gl_Position = u_view_proj * vec4(a_position, 1.0); })";
 const char* k_depth_fs = R"(#version 300 es
 void main() {})";
 
@@ -187,7 +196,7 @@ Status compile_programs(Programs& p)
         return s;
     if (Status s = link(k_shadow_vs, k_shadow_fs, p.shadow); !s)
         return s;
-    if (Status s = link(k_grid_vs, k_depth_fs, p.depth); !s)
+    if (Status s = link(k_depth_vs, k_depth_fs, p.depth); !s)
         return s;
     if (Status s = link(k_layer_vs, k_layer_fs, p.layer); !s)
         return s;
@@ -207,7 +216,8 @@ Status compile_programs(Programs& p)
     p.grid_eye = glGetUniformLocation(p.grid, "u_eye");
     p.grid_axes = glGetUniformLocation(p.grid, "u_axes");
     p.grid_origin = glGetUniformLocation(p.grid, "u_origin");
-    p.grid_spacing = glGetUniformLocation(p.grid, "u_spacing");
+    p.grid_inv_spacing = glGetUniformLocation(p.grid, "u_inv_spacing");
+    p.grid_sky_row = glGetUniformLocation(p.grid, "u_sky_row");
     p.grid_fade = glGetUniformLocation(p.grid, "u_fade");
     p.grid_sky_top = glGetUniformLocation(p.grid, "u_sky_top");
     p.grid_sky_bottom = glGetUniformLocation(p.grid, "u_sky_bottom");

@@ -18,8 +18,8 @@ struct Programs {
     // body
     GLint model = -1, view_proj = -1, color = -1, eye = -1, key_dir = -1, fill_dir = -1, flat = -1;
     // grid
-    GLint grid_view_proj = -1, grid_eye = -1, grid_axes = -1, grid_origin = -1, grid_spacing = -1,
-          grid_fade = -1, grid_sky_top = -1, grid_sky_bottom = -1;
+    GLint grid_view_proj = -1, grid_eye = -1, grid_axes = -1, grid_origin = -1, grid_inv_spacing = -1,
+          grid_fade = -1, grid_sky_top = -1, grid_sky_bottom = -1, grid_sky_row = -1;
     // shadow
     GLint shadow_view_proj = -1;
     // ground depth, body layer
