@@ -154,14 +154,27 @@ void Framebuffer::release()
     m_saved_fbo = m_saved_color = m_saved_depth = 0;
 }
 
-// A renderbuffer of the bound framebuffer's size, attached to it.
-void Framebuffer::attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei samples)
+namespace
+{
+
+// A renderbuffer of the given size attached to the bound framebuffer.
+void attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei samples, int width,
+                         int height)
 {
     glGenRenderbuffers(1, &out);
     glBindRenderbuffer(GL_RENDERBUFFER, out);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, m_width, m_height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, out);
 }
+
+constexpr int k_tile = 64; ///< The multisampled target grows and shrinks by whole tiles of pixels.
+
+int whole_tiles(int pixels, int limit)
+{
+    return std::min(limit, std::max(k_tile, (pixels + k_tile - 1) / k_tile * k_tile));
+}
+
+} // namespace
 
 Status Framebuffer::create(int width, int height, int samples)
 {
@@ -177,15 +190,19 @@ Status Framebuffer::create(int width, int height, int samples)
     };
     glGenFramebuffers(1, &m_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
-    attach_renderbuffer(m_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0);
-    attach_renderbuffer(m_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0);
+    attach_renderbuffer(m_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0, width, height);
+    attach_renderbuffer(m_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0, width, height);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return incomplete("image");
     if (m_samples > 1) {
         glGenFramebuffers(1, &m_ms_fbo);
         glBindFramebuffer(GL_FRAMEBUFFER, m_ms_fbo);
-        attach_renderbuffer(m_ms_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, m_samples);
-        attach_renderbuffer(m_ms_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, m_samples);
+        m_layer_width = whole_tiles(0, width);
+        m_layer_height = whole_tiles(0, height);
+        attach_renderbuffer(m_ms_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, m_samples, m_layer_width,
+                            m_layer_height);
+        attach_renderbuffer(m_ms_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, m_samples, m_layer_width,
+                            m_layer_height);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return incomplete("multisampled");
         glGenTextures(1, &m_layer_texture);
@@ -201,8 +218,8 @@ Status Framebuffer::create(int width, int height, int samples)
             return incomplete("layer");
         glGenFramebuffers(1, &m_saved_fbo);
         glBindFramebuffer(GL_FRAMEBUFFER, m_saved_fbo);
-        attach_renderbuffer(m_saved_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0);
-        attach_renderbuffer(m_saved_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0);
+        attach_renderbuffer(m_saved_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0, width, height);
+        attach_renderbuffer(m_saved_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0, width, height);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return incomplete("background copy");
     }
@@ -217,18 +234,28 @@ void Framebuffer::bind() const
     glViewport(0, 0, m_width, m_height);
 }
 
-void Framebuffer::bind_multisampled() const
+void Framebuffer::begin_layer(int width, int height)
 {
+    const int w = whole_tiles(width, m_width), h = whole_tiles(height, m_height);
+    if (w != m_layer_width || h != m_layer_height) {
+        m_layer_width = w;
+        m_layer_height = h;
+        for (auto [buffer, format] : {std::pair{m_ms_color, GL_RGBA8}, {m_ms_depth, GL_DEPTH_COMPONENT24}}) {
+            glBindRenderbuffer(GL_RENDERBUFFER, buffer);
+            glRenderbufferStorageMultisample(GL_RENDERBUFFER, m_samples, format, w, h);
+        }
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, m_ms_fbo);
-    glViewport(0, 0, m_width, m_height);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void Framebuffer::resolve(int x, int y, int width, int height) const
+void Framebuffer::resolve(int width, int height) const
 {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_ms_fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_layer_fbo);
-    glBlitFramebuffer(x, y, x + width, y + height, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 namespace

@@ -38,7 +38,9 @@ class GlContext
 /// The image a frame ends in (colour + depth, one sample) and, when `samples` > 1, a multisampled
 /// colour + depth target for the bodies and a single-sample texture their samples resolve into, to be
 /// composited over the image (only bodies have edges that need the samples: the ground and the sky
-/// shade smoothly at one sample).
+/// shade smoothly at one sample). The multisampled target is only as large as the bodies' rectangle
+/// (in whole 64-pixel tiles): on llvmpipe clearing all of a small target is several times cheaper
+/// than a scissored clear of part of a large one, which it draws as a rectangle.
 class Framebuffer
 {
   public:
@@ -51,11 +53,12 @@ class Framebuffer
     Status create(int width, int height, int samples);
     /// Binds the single-sample image to draw into, with the viewport set to all of it.
     void bind() const;
-    /// Binds the multisampled target (samples() > 1 only), viewport all of it.
-    void bind_multisampled() const;
-    /// Resolves the multisampled target's colour inside a rectangle (GL pixels, origin bottom left)
-    /// into layer_texture(), same place.
-    void resolve(int x, int y, int width, int height) const;
+    /// Binds the multisampled target (samples() > 1 only), sized to hold width x height pixels from
+    /// its lower left corner, and clears all of it to transparent at the far plane.
+    void begin_layer(int width, int height);
+    /// Resolves the multisampled target's lower left width x height pixels into layer_texture(), same
+    /// place.
+    void resolve(int width, int height) const;
     [[nodiscard]] GLuint layer_texture() const { return m_layer_texture; }
     /// Copies the image's colour and depth aside (samples() > 1 only) ...
     void save_background() const;
@@ -67,8 +70,8 @@ class Framebuffer
 
   private:
     void release();
-    void attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei samples);
     int m_width = 0, m_height = 0, m_samples = 1;
+    int m_layer_width = 0, m_layer_height = 0;  ///< The multisampled target's size.
     GLuint m_fbo = 0, m_color = 0, m_depth = 0; ///< The image.
     GLuint m_ms_fbo = 0, m_ms_color = 0, m_ms_depth = 0;
     GLuint m_layer_fbo = 0, m_layer_texture = 0;

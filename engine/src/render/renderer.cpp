@@ -570,8 +570,8 @@ GlRect Renderer::Impl::layer_rect(const render::View& view, const GlRect& viewpo
 }
 
 // Under MSAA only the bodies are drawn at every sample (the ground and sky shade smoothly at one, and
-// were already drawn into the image): inside the pixels they can cover, over the ground's depth, into
-// a transparent multisampled target, resolved and blended over the image.
+// were already drawn into the image): the pixels they can cover, over the ground's depth, into a
+// transparent multisampled target of that rectangle's size, resolved and blended over the image.
 void Renderer::Impl::draw_body_layer(const render::View& view,
                                      const std::vector<std::pair<Vec3, double>>& planes,
                                      const GlRect& viewport)
@@ -579,19 +579,18 @@ void Renderer::Impl::draw_body_layer(const render::View& view,
     const GlRect r = layer_rect(view, viewport);
     if (r.width <= 0 || r.height <= 0)
         return;
-    framebuffer.bind_multisampled();
-    set_viewport(viewport);
+    framebuffer.begin_layer(r.width, r.height);
+    // The layer's lower left pixel is the image's pixel (r.x, r.y).
+    set_viewport({viewport.x - r.x, viewport.y - r.y, viewport.width, viewport.height});
     glEnable(GL_SCISSOR_TEST);
-    glScissor(r.x, r.y, r.width, r.height);
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glScissor(0, 0, r.width, r.height);
     draw_ground_depth(view, planes);
     glEnable(GL_CULL_FACE);
     glUseProgram(programs.body);
     draw_bodies();
     glDisable(GL_CULL_FACE);
     glDisable(GL_SCISSOR_TEST);
-    framebuffer.resolve(r.x, r.y, r.width, r.height);
+    framebuffer.resolve(r.width, r.height);
     composite_layer(r, viewport);
 }
 
@@ -609,6 +608,7 @@ void Renderer::Impl::composite_layer(const GlRect& r, const GlRect& viewport)
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, framebuffer.layer_texture());
     glUniform1i(programs.layer_texture, 0);
+    glUniform2i(programs.layer_origin, r.x, r.y);
     const float cover[6] = {-1, -1, 3, -1, -1, 3}; // one triangle over the viewport
     glBindVertexArray(sky_vao);
     glBindBuffer(GL_ARRAY_BUFFER, sky_vbo);

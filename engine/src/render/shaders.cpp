@@ -134,16 +134,18 @@ void main() { gl_Position = u_view_proj * vec4(a_position, 1.0); })";
 const char* k_depth_fs = R"(#version 300 es
 void main() {})";
 
-// The resolved body layer over the image, pixel for pixel: its colours are premultiplied by coverage
-// (cleared to transparent), so blending ONE, ONE_MINUS_SRC_ALPHA lays the edges over what is behind.
+// The resolved body layer over the image, pixel for pixel (the layer holds the image's pixels from
+// u_layer_origin on): its colours are premultiplied by coverage (cleared to transparent), so blending
+// ONE, ONE_MINUS_SRC_ALPHA lays the edges over what is behind.
 const char* k_layer_vs = R"(#version 300 es
 layout(location = 0) in vec2 a_ndc;
 void main() { gl_Position = vec4(a_ndc, 0.0, 1.0); })";
 const char* k_layer_fs = R"(#version 300 es
 precision highp float;
 uniform highp sampler2D u_layer;
+uniform ivec2 u_layer_origin;
 out vec4 o_color;
-void main() { o_color = texelFetch(u_layer, ivec2(gl_FragCoord.xy), 0); })";
+void main() { o_color = texelFetch(u_layer, ivec2(gl_FragCoord.xy) - u_layer_origin, 0); })";
 
 Status compile(GLenum type, const char* source, GLuint& out)
 {
@@ -202,6 +204,7 @@ Status compile_programs(Programs& p)
         return s;
     p.depth_view_proj = glGetUniformLocation(p.depth, "u_view_proj");
     p.layer_texture = glGetUniformLocation(p.layer, "u_layer");
+    p.layer_origin = glGetUniformLocation(p.layer, "u_layer_origin");
     p.shadow_view_proj = glGetUniformLocation(p.shadow, "u_view_proj");
     p.sky_top = glGetUniformLocation(p.sky, "u_top");
     p.sky_bottom = glGetUniformLocation(p.sky, "u_bottom");

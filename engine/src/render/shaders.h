@@ -23,7 +23,7 @@ struct Programs {
     // shadow
     GLint shadow_view_proj = -1;
     // ground depth, body layer
-    GLint depth_view_proj = -1, layer_texture = -1;
+    GLint depth_view_proj = -1, layer_texture = -1, layer_origin = -1;
 };
 
 /// Compiles and links them all; errors carry the compiler's log.
