@@ -231,15 +231,17 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
     }
 
+    void clear_image();
     void draw_grid(const render::View& view, const Vec3& normal_in, double offset, const GlRect& viewport);
-    void draw_ground_shadows(const World& world, const render::View& view,
-                             const std::vector<std::pair<Vec3, double>>& planes, PoseSource poses);
+    void draw_ground_shadows(const std::vector<Aabb>& boxes, const render::View& view,
+                             const std::vector<std::pair<Vec3, double>>& planes);
     void draw_background(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes,
                          const GlRect& viewport);
     void draw_ground_depth(const render::View& view, const std::vector<std::pair<Vec3, double>>& planes);
-    void draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
-                      const Vec3& a0, const Vec3& a1, PoseSource poses);
-    render::View begin_frame(const World& world, const CameraDef& camera_in, const PixelRect& rect);
+    void draw_shadows(const std::vector<Aabb>& boxes, const render::View& view, const Vec3& n, double offset,
+                      const Vec3& a0, const Vec3& a1);
+    render::View begin_frame(const std::vector<Aabb>& boxes, const CameraDef& camera_in,
+                             const PixelRect& rect);
     [[nodiscard]] int segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
                                    const render::View& view, int viewport_height);
     void collect_bodies(const World& world, PoseSource poses, const render::View& view, int viewport_height,
@@ -348,14 +350,14 @@ void Renderer::Impl::draw_grid(const render::View& view, const Vec3& normal_in, 
 }
 
 // Every plane's blob shadows, over the grids already drawn.
-void Renderer::Impl::draw_ground_shadows(const World& world, const render::View& view,
-                                         const std::vector<std::pair<Vec3, double>>& planes, PoseSource poses)
+void Renderer::Impl::draw_ground_shadows(const std::vector<Aabb>& boxes, const render::View& view,
+                                         const std::vector<std::pair<Vec3, double>>& planes)
 {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(0.5f, 0.5f); // just in front of the grid, still behind resting bodies
     for (const auto& [normal, offset] : planes) {
         const GridSquare g = grid_square(view, normal, offset);
-        draw_shadows(world, view, g.n, offset, g.a0, g.a1, poses);
+        draw_shadows(boxes, view, g.n, offset, g.a0, g.a1);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -377,20 +379,13 @@ void Renderer::Impl::draw_ground_depth(const render::View& view,
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void Renderer::Impl::draw_shadows(const World& world, const render::View& view, const Vec3& n, double offset,
-                                  const Vec3& a0, const Vec3& a1, PoseSource poses)
+void Renderer::Impl::draw_shadows(const std::vector<Aabb>& boxes, const render::View& view, const Vec3& n,
+                                  double offset, const Vec3& a0, const Vec3& a1)
 {
     // Each body's box centre dropped onto the plane; wider, softer and fainter the higher it is.
     shadow_vertices.clear();
     const double corners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
-    for (Entity b : world_bodies(world)) {
-        const ShapeDef& shape = body_shape(world, b);
-        if (shape.type == ShapeType::Plane)
-            continue;
-        const bool interpolated = poses == PoseSource::Interpolated;
-        const Aabb box =
-            world_aabb(shape, interpolated ? body_interpolated_position(world, b) : body_position(world, b),
-                       interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
+    for (const Aabb& box : boxes) {
         const Vec3 c = 0.5 * (box.min + box.max);
         const Vec3 h = 0.5 * (box.max - box.min);
         // Extent across the plane: the box's half-size with the part along the normal removed.
@@ -428,23 +423,31 @@ void Renderer::Impl::draw_shadows(const World& world, const render::View& view, 
     glDepthMask(GL_TRUE);
 }
 
-// Frames the camera, clears the framebuffer and sets up the body program: the view of this frame.
-render::View Renderer::Impl::begin_frame(const World& world, const CameraDef& camera_in,
+// The whole image to the sky's bottom colour and the far plane.
+void Renderer::Impl::clear_image()
+{
+    glClearColor(static_cast<float>(def.sky_bottom.x), static_cast<float>(def.sky_bottom.y),
+                 static_cast<float>(def.sky_bottom.z), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+// Frames the camera (over the bodies' boxes), clears the framebuffer and sets up the body program: the
+// view of this frame.
+render::View Renderer::Impl::begin_frame(const std::vector<Aabb>& boxes, const CameraDef& camera_in,
                                          const PixelRect& rect)
 {
     const double aspect = static_cast<double>(rect.width) / rect.height;
-    CameraDef camera = frame_bodies(world, camera_in, aspect);
+    CameraDef camera = render::frame_boxes(boxes, camera_in, aspect);
     if (def.fault == RenderFault::FlippedYaw)
         camera.yaw_deg += 180.0;
     const CameraDef framed =
-        frame_bodies(world, CameraDef{.target = std::nullopt, .fov_deg = camera.fov_deg}, aspect);
+        render::frame_boxes(boxes, CameraDef{.target = std::nullopt, .fov_deg = camera.fov_deg}, aspect);
     const render::View view = render::make_view(camera, aspect, framed.distance);
 
     framebuffer.bind();
     glDepthMask(GL_TRUE);
-    glClearColor(static_cast<float>(def.sky_bottom.x), static_cast<float>(def.sky_bottom.y),
-                 static_cast<float>(def.sky_bottom.z), 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (framebuffer.samples() == 1) // under MSAA the background is cleared only when it is drawn
+        clear_image();
     set_viewport(gl_rect(rect, def.height));
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
@@ -637,6 +640,7 @@ void Renderer::Impl::draw_background(const render::View& view,
     if (key == background_key) {
         framebuffer.restore_background();
     } else {
+        clear_image();
         for (const auto& [normal, offset] : planes)
             draw_grid(view, normal, offset, viewport);
         draw_sky(sky_for(view, planes, viewport));
@@ -671,7 +675,12 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         bodies.clear();
         last_world = &world;
     }
-    const render::View view = begin_frame(world, camera_in, rect);
+    // The bodies' boxes once a frame: for the framing and, unless the poses are interpolated, the shadows.
+    const std::vector<Aabb> boxes = render::body_boxes(world);
+    const render::View view = begin_frame(boxes, camera_in, rect);
+    const std::vector<Aabb> shadow_boxes =
+        poses == PoseSource::Interpolated ? render::body_boxes(world, poses) : std::vector<Aabb>{};
+    const std::vector<Aabb>& shadowed = poses == PoseSource::Interpolated ? shadow_boxes : boxes;
     const GlRect viewport = gl_rect(rect, def.height);
     std::vector<std::pair<Vec3, double>> planes;
     collect_bodies(world, poses, view, rect.height, planes);
@@ -682,7 +691,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
     glDisable(GL_CULL_FACE);
     if (framebuffer.samples() > 1) {
         draw_background(view, planes, viewport);
-        draw_ground_shadows(world, view, planes, poses);
+        draw_ground_shadows(shadowed, view, planes);
         draw_body_layer(view, planes, viewport);
     } else {
         glEnable(GL_CULL_FACE);
@@ -690,7 +699,7 @@ Status Renderer::Impl::render(const World& world, const CameraDef& camera_in, Im
         glDisable(GL_CULL_FACE);
         for (const auto& [normal, offset] : planes)
             draw_grid(view, normal, offset, viewport);
-        draw_ground_shadows(world, view, planes, poses);
+        draw_ground_shadows(shadowed, view, planes);
         draw_sky(sky_for(view, planes, viewport));
     }
     glBindVertexArray(0);

@@ -55,39 +55,55 @@ double framing_distance(const CameraDef& camera, const Vec3& target, std::span<c
 
 CameraDef frame_bodies(const World& world, const CameraDef& camera, double aspect)
 {
-    CameraDef out = camera;
-    if (out.target && out.distance > 0.0)
-        return out;
-    std::vector<Aabb> boxes;
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (Entity b : world_bodies(world)) {
-        const ShapeDef& shape = body_shape(world, b);
-        if (shape.type == ShapeType::Plane)
-            continue;
-        const Aabb box = world_aabb(shape, body_position(world, b), body_orientation(world, b));
-        if (!is_finite(box.min) || !is_finite(box.max))
-            continue;
-        for (int i = 0; i < 3; ++i) {
-            lo[i] = std::min(lo[i], box.min[i]);
-            hi[i] = std::max(hi[i], box.max[i]);
-        }
-        boxes.push_back(box);
-    }
-    if (boxes.empty()) { // nothing to frame: a 2 m view of the origin
-        lo = {-1, -1, -1};
-        hi = {1, 1, 1};
-        boxes.push_back({lo, hi});
-    }
-    if (!out.target)
-        out.target = 0.5 * (lo + hi);
-    if (!(out.distance > 0.0)) {
-        out.distance = k_frame_margin * framing_distance(camera, *out.target, boxes, aspect);
-    }
-    return out;
+    if (camera.target && camera.distance > 0.0)
+        return camera;
+    return render::frame_boxes(render::body_boxes(world), camera, aspect);
 }
 
 namespace render
 {
+
+std::vector<Aabb> body_boxes(const World& world, PoseSource poses)
+{
+    const bool interpolated = poses == PoseSource::Interpolated;
+    std::vector<Aabb> out;
+    for (Entity b : world_bodies(world)) {
+        const ShapeDef& shape = body_shape(world, b);
+        if (shape.type == ShapeType::Plane)
+            continue;
+        const Aabb box =
+            world_aabb(shape, interpolated ? body_interpolated_position(world, b) : body_position(world, b),
+                       interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
+        if (!is_finite(box.min) || !is_finite(box.max))
+            continue;
+        out.push_back(box);
+    }
+    return out;
+}
+
+CameraDef frame_boxes(std::span<const Aabb> boxes, const CameraDef& camera, double aspect)
+{
+    CameraDef out = camera;
+    if (out.target && out.distance > 0.0)
+        return out;
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (const Aabb& box : boxes)
+        for (int i = 0; i < 3; ++i) {
+            lo[i] = std::min(lo[i], box.min[i]);
+            hi[i] = std::max(hi[i], box.max[i]);
+        }
+    const Aabb origin_view{{-1, -1, -1}, {1, 1, 1}}; // nothing to frame: a 2 m view of the origin
+    if (boxes.empty()) {
+        lo = origin_view.min;
+        hi = origin_view.max;
+        boxes = std::span(&origin_view, 1);
+    }
+    if (!out.target)
+        out.target = 0.5 * (lo + hi);
+    if (!(out.distance > 0.0))
+        out.distance = k_frame_margin * framing_distance(camera, *out.target, boxes, aspect);
+    return out;
+}
 
 Mat4 model_matrix(const Vec3& p, const Quat& q)
 {

@@ -2,13 +2,28 @@
 // Camera matrices for the renderer: an orbit camera turned into a view-projection matrix. Internal.
 #pragma once
 
+#include "supermodal/geometry.h"
 #include "supermodal/math.h"
+#include "supermodal/render.h"
 #include "supermodal/scene.h"
 
 #include <array>
+#include <span>
+#include <vector>
+
+namespace supermodal
+{
+class World;
+} // namespace supermodal
 
 namespace supermodal::render
 {
+
+/// Every finite body's box at its current (or interpolated) pose, planes left out: what framing and
+/// the blob shadows look at.
+[[nodiscard]] std::vector<Aabb> body_boxes(const World& world, PoseSource poses = PoseSource::Current);
+/// frame_bodies() over boxes already made (empty: a 2 m view of the origin).
+[[nodiscard]] CameraDef frame_boxes(std::span<const Aabb> boxes, const CameraDef& camera, double aspect);
 
 /// Column-major 4×4 float matrix, as GL wants it.
 using Mat4 = std::array<float, 16>;
