@@ -44,11 +44,10 @@ void set_layout()
 
 } // namespace
 
-std::string shape_key(const ShapeDef& s, int tessellation)
+std::string shape_key(const ShapeDef& s)
 {
     std::string key;
     append(key, &s.type, sizeof s.type);
-    append(key, &tessellation, sizeof tessellation);
     for (double v : {s.radii.x, s.radii.y, s.radii.z, s.epsilon1, s.epsilon2, s.taper.kx, s.taper.ky,
                      s.bend.curvature, s.bend.angle})
         append(key, v);

@@ -29,8 +29,8 @@ struct GpuMesh {
 /// The smallest box holding the points (a zero box at the origin when there are none).
 [[nodiscard]] Aabb bounds_of(std::span<const Vec3> points);
 
-/// Bytes of every ShapeDef field that changes the surface, plus the resolution: equal keys, equal meshes.
-[[nodiscard]] std::string shape_key(const ShapeDef& shape, int tessellation);
+/// Bytes of every ShapeDef field that changes the surface: equal keys, equal surfaces.
+[[nodiscard]] std::string shape_key(const ShapeDef& shape);
 /// Per vertex: the unit average of the adjacent faces' normals, weighted by area.
 void face_normals_per_vertex(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                              std::vector<Vec3>& out);

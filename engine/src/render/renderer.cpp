@@ -187,7 +187,9 @@ struct Renderer::Impl {
         return {};
     }
 
-    BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape, int segments)
+    // `surface` = shape_key(shape).
+    BodyEntry& entry(const World& world, Entity b, const ShapeDef& shape, const std::string& surface,
+                     int segments)
     {
         BodyEntry& e = bodies[b];
         auto custom = custom_meshes.find(b);
@@ -198,7 +200,7 @@ struct Renderer::Impl {
         // keep even triangles, which bend evenly.
         const MeshSpacing spacing = basis == nullptr ? MeshSpacing::Curvature : MeshSpacing::EqualArc;
         std::string key = given != nullptr ? "mesh@" + std::to_string(reinterpret_cast<uintptr_t>(given))
-                                           : render::shape_key(shape, segments) +
+                                           : surface + "/" + std::to_string(segments) +
                                                  (spacing == MeshSpacing::Curvature ? "/curvature" : "");
         if (e.mesh == nullptr || e.key != key) { // new body, a changed shape or a given mesh
             e.mesh = given != nullptr ? &meshes.get(*given, key) : &meshes.get(shape, segments, spacing, key);
@@ -242,8 +244,9 @@ struct Renderer::Impl {
                       const Vec3& a0, const Vec3& a1);
     render::View begin_frame(const std::vector<Aabb>& boxes, const CameraDef& camera_in,
                              const PixelRect& rect);
-    [[nodiscard]] int segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
-                                   const render::View& view, int viewport_height);
+    [[nodiscard]] int segments_for(const World& world, Entity b, const ShapeDef& shape,
+                                   const std::string& surface, const Vec3& position, const render::View& view,
+                                   int viewport_height);
     void collect_bodies(const World& world, PoseSource poses, const render::View& view, int viewport_height,
                         std::vector<std::pair<Vec3, double>>& out_planes);
     void draw_bodies() const;
@@ -482,7 +485,9 @@ void Renderer::Impl::collect_bodies(const World& world, PoseSource poses, const 
         }
         const bool interpolated = poses == PoseSource::Interpolated;
         const Vec3 position = interpolated ? body_interpolated_position(world, b) : body_position(world, b);
-        BodyEntry& e = entry(world, b, shape, segments_for(world, b, shape, position, view, viewport_height));
+        const std::string surface = render::shape_key(shape);
+        BodyEntry& e = entry(world, b, shape, surface,
+                             segments_for(world, b, shape, surface, position, view, viewport_height));
         const render::Mat4 model = render::model_matrix(
             position, interpolated ? body_interpolated_orientation(world, b) : body_orientation(world, b));
         auto color = colors.find(b);
@@ -500,8 +505,9 @@ void Renderer::Impl::collect_bodies(const World& world, PoseSource poses, const 
 // body's nearest possible point; otherwise tessellation (modal skins are made per mesh, so a modal body
 // keeps one). Levels, not a continuous count, so that few meshes are cached and a body changes mesh
 // only where it crosses a level.
-int Renderer::Impl::segments_for(const World& world, Entity b, const ShapeDef& shape, const Vec3& position,
-                                 const render::View& view, int viewport_height)
+int Renderer::Impl::segments_for(const World& world, Entity b, const ShapeDef& shape,
+                                 const std::string& surface, const Vec3& position, const render::View& view,
+                                 int viewport_height)
 {
     if (def.gap_pixels <= 0.0 || shape.type != ShapeType::Superquadric || custom_meshes.count(b) != 0 ||
         body_modal_basis(world, b) != nullptr)
@@ -511,7 +517,7 @@ int Renderer::Impl::segments_for(const World& world, Entity b, const ShapeDef& s
     if (!(depth > reach))
         return def.tessellation; // reaches the eye's plane: no size on screen to go by
     const double pixels_per_metre = view.fy * 0.5 * viewport_height / (depth - reach);
-    auto [it, fresh] = gaps.try_emplace(render::shape_key(shape, 0), 0.0);
+    auto [it, fresh] = gaps.try_emplace(surface, 0.0);
     if (fresh)
         it->second = tessellation_gap(shape, 1); // [m], falls as 1 / segments²
     for (int level : {8, 12, 16, 20, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512})
