@@ -434,8 +434,8 @@ void Renderer::Impl::clear_image()
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-// Frames the camera (over the bodies' boxes), clears the framebuffer and sets up the body program: the
-// view of this frame.
+// Frames the camera (over the bodies' boxes), binds the image (cleared at one sample; under MSAA
+// draw_background clears it when it draws) and sets up the body program: the view of this frame.
 render::View Renderer::Impl::begin_frame(const std::vector<Aabb>& boxes, const CameraDef& camera_in,
                                          const PixelRect& rect)
 {
