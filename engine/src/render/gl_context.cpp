@@ -167,6 +167,19 @@ void attach_renderbuffer(GLuint& out, GLenum attachment, GLenum format, GLsizei 
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, out);
 }
 
+constexpr GLenum k_color_format = GL_RGBA8, k_depth_format = GL_DEPTH_COMPONENT24;
+
+// A framebuffer with colour and depth renderbuffers of the given size and samples (0: one), left
+// bound; false when it is incomplete.
+bool make_target(GLuint& fbo, GLuint& color, GLuint& depth, GLsizei samples, int width, int height)
+{
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    attach_renderbuffer(color, GL_COLOR_ATTACHMENT0, k_color_format, samples, width, height);
+    attach_renderbuffer(depth, GL_DEPTH_ATTACHMENT, k_depth_format, samples, width, height);
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
 constexpr int k_tile = 64; ///< The multisampled target grows and shrinks by whole tiles of pixels.
 
 int whole_tiles(int pixels, int limit)
@@ -188,22 +201,12 @@ Status Framebuffer::create(int width, int height, int samples)
         return render_error(std::string(which) + " framebuffer incomplete (" + std::to_string(width) + "x" +
                             std::to_string(height) + ", " + std::to_string(m_samples) + " samples)");
     };
-    glGenFramebuffers(1, &m_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
-    attach_renderbuffer(m_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0, width, height);
-    attach_renderbuffer(m_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0, width, height);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    if (!make_target(m_fbo, m_color, m_depth, 0, width, height))
         return incomplete("image");
     if (m_samples > 1) {
-        glGenFramebuffers(1, &m_ms_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, m_ms_fbo);
         m_layer_width = whole_tiles(0, width);
         m_layer_height = whole_tiles(0, height);
-        attach_renderbuffer(m_ms_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, m_samples, m_layer_width,
-                            m_layer_height);
-        attach_renderbuffer(m_ms_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, m_samples, m_layer_width,
-                            m_layer_height);
-        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        if (!make_target(m_ms_fbo, m_ms_color, m_ms_depth, m_samples, m_layer_width, m_layer_height))
             return incomplete("multisampled");
         glGenTextures(1, &m_layer_texture);
         glBindTexture(GL_TEXTURE_2D, m_layer_texture);
@@ -216,11 +219,7 @@ Status Framebuffer::create(int width, int height, int samples)
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_layer_texture, 0);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return incomplete("layer");
-        glGenFramebuffers(1, &m_saved_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, m_saved_fbo);
-        attach_renderbuffer(m_saved_color, GL_COLOR_ATTACHMENT0, GL_RGBA8, 0, width, height);
-        attach_renderbuffer(m_saved_depth, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT24, 0, width, height);
-        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        if (!make_target(m_saved_fbo, m_saved_color, m_saved_depth, 0, width, height))
             return incomplete("background copy");
     }
     if (std::string e = gl_errors(); !e.empty())
@@ -240,7 +239,7 @@ void Framebuffer::begin_layer(int width, int height)
     if (w != m_layer_width || h != m_layer_height) {
         m_layer_width = w;
         m_layer_height = h;
-        for (auto [buffer, format] : {std::pair{m_ms_color, GL_RGBA8}, {m_ms_depth, GL_DEPTH_COMPONENT24}}) {
+        for (auto [buffer, format] : {std::pair{m_ms_color, k_color_format}, {m_ms_depth, k_depth_format}}) {
             glBindRenderbuffer(GL_RENDERBUFFER, buffer);
             glRenderbufferStorageMultisample(GL_RENDERBUFFER, m_samples, format, w, h);
         }
