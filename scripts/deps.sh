@@ -10,7 +10,7 @@ packages=(
   libcli11-dev         # the supermodal command line
   libeigen3-dev        # modal dynamics: sparse assembly, dense eigen solves
   libspectra-dev       # modal dynamics: shift-invert eigen solves for large lattices
-  libsuitesparse-dev   # modal dynamics: CHOLMOD supernodal Cholesky (with METIS/AMD ordering) for them
+  libsuitesparse-dev   # modal dynamics: CHOLMOD's ordering and supernodes for their sparse Cholesky
   libccd-dev           # contact: MPR penetration depth of convex pairs
   libassimp-dev        # io: mesh import (OBJ, PLY, STL, glTF/GLB, FBX)
   libgtest-dev         # tests

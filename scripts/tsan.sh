@@ -15,7 +15,8 @@ CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithD
 cmake --build "$build" -j "$(nproc)" --target supermodal_thread_tests
 # Any report fails the run: halt_on_error makes the first race exit non-zero.
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
-# CHOLMOD (the modal bases' factorization) runs a few loops on OpenMP threads, and libgomp is not built
+# The modal bases' factorization runs on the calling thread, but CHOLMOD (which orders it) is built with
+# OpenMP: should a loop of it run on OpenMP threads, libgomp is not built
 # with ThreadSanitizer, so its barriers are invisible to it and every such loop reads as a race. A limit
 # of one OpenMP thread (CHOLMOD asks for its count per loop, so OMP_NUM_THREADS alone does not do) keeps
 # those loops on the calling thread; the engine's own threads are what is tested.

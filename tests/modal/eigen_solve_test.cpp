@@ -112,8 +112,8 @@ TEST(ModalEigenSolve, CholeskyPathMatchesDenseOnACube)
 
 TEST(ModalEigenSolve, SparseBuildsAreBitIdentical)
 {
-    // The fill-reducing ordering (AMD or METIS) and the factorization are deterministic: two builds of
-    // one def hand out the same bits, which the world's state hash relies on.
+    // The fill-reducing ordering (the lattice dissection, or AMD) and the factorization are deterministic:
+    // two builds of one def hand out the same bits, which the world's state hash relies on.
     const sm::ModalBasisDef def = test::sphere_def(4, 2, 12);
     const sm::ModalBasis a = build_with(def, sm::ModalSolver::Sparse);
     const sm::ModalBasis b = build_with(def, sm::ModalSolver::Sparse);

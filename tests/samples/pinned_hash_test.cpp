@@ -84,10 +84,15 @@ struct Pinned {
 // Demo and chair, 2026-12-05 (later): a rigid contact point's effective masses from its rows' arms and
 // turns, (1/ma + 1/mb) + (r × d)·I⁻¹(r × d) per side, instead of d·K d with K formed as a matrix (the same
 // sum, rounded differently); ball on board and pile run the penalty solver and keep theirs.
+// Ball on board, 2026-12-05 (later still): the sparse eigen solve's Cholesky is the engine's own supernodal
+// factorization on Eigen kernels, ordered by the lattice's geometric nested dissection, instead of
+// CHOLMOD's numeric factorization on the BLAS, so the board's modes differ in their last bits. Both runs
+// compared over all 400 steps: positions within 1.1e-13 m, velocities within 9e-13 m/s, angular
+// velocities within 4.3e-11 rad/s; the other three have no sparse-solved basis and keep theirs.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xe89ae1a9cb7859f0ULL},
     {"chair_with_dummy", 500, 0x6f642d86dd2279aeULL},
-    {"ball_on_board", 400, 0x54df90b900dc4319ULL},
+    {"ball_on_board", 400, 0x73dff2b5e7091710ULL},
     {"pile", 240, 0x79e37d9f2636e774ULL},
 };
 

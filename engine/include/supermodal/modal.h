@@ -57,7 +57,7 @@ struct LatticeDef {
 enum class ModalSolver : uint8_t {
     Auto,   ///< Dense up to k_dense_dof_limit degrees of freedom, sparse above.
     Dense,  ///< Eigen's dense generalized solver: every eigenpair; O(n³) time, O(n²) memory.
-    Sparse, ///< Shift-invert block Krylov iteration on CHOLMOD's sparse Cholesky (Spectra's Lanczos with a
+    Sparse, ///< Shift-invert block Krylov iteration on a supernodal sparse Cholesky (Spectra's Lanczos with a
             ///< confirmation run where a run of equal frequencies is as wide as the block): the lowest modes.
 };
 /// Auto switches to the sparse solver above this many degrees of freedom.
@@ -110,7 +110,7 @@ struct ModalDiagnostics {
     bool splits_degenerate_cluster = false;    ///< Mode r and r+1 share a frequency (within 1e-6): which
                                                ///< of the pair is kept is arbitrary (only with
                                                ///< rest_offsets, which keep the count exact).
-    bool sparse_solver = false;                ///< The sparse (Spectra + CHOLMOD) path ran.
+    bool sparse_solver = false;                ///< The sparse (sparse Cholesky) path ran.
     int solver_rounds = 0;         ///< Sparse path: runs that added modes (more than 1 = a Lanczos
                                    ///< confirmation run found missed copies of repeated frequencies).
     bool inertia_checked = false;  ///< Sparse path: repeated frequencies cannot have been missed:

@@ -5,9 +5,9 @@
 // on purpose: K − σM (σ < 0) is well conditioned and positive definite, while M may be nearly singular
 // where a node only touches a sliver of material, and a Cholesky of M would smear that over the lowest
 // modes.
-// Sparse path: a block Krylov iteration (solve_sparse_block) with a supernodal Cholesky (CHOLMOD,
-// fill-reducing ordering) of K − σM, positive definite for σ < 0: each step solves with 4 right-hand
-// sides at once, so the factor is read once per 4 vectors with dense matrix-matrix kernels. When it
+// Sparse path: a block Krylov iteration (solve_sparse_block) with a supernodal Cholesky of K − σM
+// (sparse_cholesky.h; ordered by the lattice's nested dissection), positive definite for σ < 0: each
+// step solves with 4 right-hand sides at once, so the factor is read once per 4 vectors. When it
 // gives up, and on request as the reference, Spectra's single-vector shift-invert Lanczos (below).
 // The six rigid modes are known in closed form, so
 // they are deflated (projected out of every Krylov vector) rather than found: Lanczos sees one vector
@@ -24,6 +24,7 @@
 // eigenvalues as Rayleigh quotients, free of the cancellation in 1/ν + σ.
 #include "modal/eigen_solve.h"
 
+#include "modal/dissection.h"
 #include "modal/sparse_cholesky.h"
 #include "modal/spectrum.h"
 
@@ -110,41 +111,6 @@ class DeflatedShiftInvert
     const Dense& m_deflate;
     const Dense& m_m_deflate;
 };
-
-/// K − σM, compressed. The lattice's mass pattern (diagonal 3×3 blocks) lies inside the stiffness
-/// pattern (full blocks), so this is K's pattern with σM subtracted in place, without the general
-/// sparse sum's merge and copies; any other pattern takes the general sum.
-SparseMatrix shifted_stiffness(const SparseMatrix& k, const SparseMatrix& m, double sigma)
-{
-    SparseMatrix out = k;
-    out.makeCompressed();
-    if (m.isCompressed() && m.rows() == k.rows() && m.cols() == k.cols()) {
-        const int* ko = out.outerIndexPtr();
-        const int* ki = out.innerIndexPtr();
-        double* kv = out.valuePtr();
-        const int* mo = m.outerIndexPtr();
-        const int* mi = m.innerIndexPtr();
-        const double* mv = m.valuePtr();
-        bool inside = true;
-        for (Eigen::Index j = 0; j < out.cols() && inside; ++j) {
-            int p = ko[j];
-            for (int q = mo[j]; q < mo[j + 1]; ++q) {
-                while (p < ko[j + 1] && ki[p] < mi[q])
-                    ++p;
-                if (p == ko[j + 1] || ki[p] != mi[q]) {
-                    inside = false;
-                    break;
-                }
-                kv[p] -= sigma * mv[q];
-            }
-        }
-        if (inside)
-            return out;
-    }
-    out = k - sigma * m;
-    out.makeCompressed();
-    return out;
-}
 
 /// A fixed pseudo-random start vector (64-bit LCG), the same on every platform.
 Vector start_vector(Eigen::Index n)
@@ -236,7 +202,7 @@ bool solve_sparse(const LatticeModel& model, int wanted, int max_kept, double si
     if (!m_orthonormalize(m, rigid))
         return false;
     SparseCholesky cholesky;
-    if (!cholesky.compute(shifted_stiffness(k, m, sigma)))
+    if (!cholesky.compute_shifted(k, &m, sigma, lattice_dissection(model)))
         return false;
     Dense found(k.rows(), 0);
     Vector values;
@@ -337,13 +303,14 @@ bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept,
     if (!m_orthonormalize(m, rigid))
         return false;
     const Dense m_rigid = m * rigid;
-    const auto project = [&](Dense& y) { y -= rigid * (m_rigid.transpose() * y); };
+    // In-place products (noalias) throughout the loop: each n × b temporary would be fresh pages.
+    const auto project = [&](Dense& y) { y.noalias() -= rigid * (m_rigid.transpose() * y).eval(); };
     const Eigen::Index max_dim = std::min<Eigen::Index>(n - rigid.cols() - b, k_block_max_dim) / b * b;
     if (max_dim < mode_count + 1 + b)
         return false;
 
     SparseCholesky cholesky;
-    if (!cholesky.compute(shifted_stiffness(k, m, sigma)))
+    if (!cholesky.compute_shifted(k, &m, sigma, lattice_dissection(model)))
         return false;
 
     Dense basis(n, max_dim), m_basis(n, max_dim);
@@ -359,8 +326,7 @@ bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept,
     Eigen::Index dim = b;
     out_checked = false;
     for (;;) {
-        const Dense rhs = m_basis.middleCols(dim - b, b);
-        if (!cholesky.solve(rhs, y))
+        if (!cholesky.solve(m_basis.middleCols(dim - b, b), y))
             return false;
         project(y);
         for (int pass = 0; pass < 2; ++pass) { // classical Gram–Schmidt, twice
@@ -368,7 +334,7 @@ bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept,
             y.noalias() -= basis.leftCols(dim) * c;
             h.block(0, dim - b, dim, b) += c;
         }
-        my = m * y;
+        my.noalias() = m * y;
         if (!orthonormalize_block(y, my, r))
             return false;
 

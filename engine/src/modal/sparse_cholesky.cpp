@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
-// CHOLMOD behind SparseCholesky (see sparse_cholesky.h).
+// SparseCholesky (see sparse_cholesky.h): CHOLMOD orders and finds the supernodes; the numeric
+// factorization and the solves are supernodal.cpp's.
 #include "modal/sparse_cholesky.h"
+
+#include "modal/supernodal.h"
 
 #include <algorithm>
 #include <cholmod.h>
@@ -9,6 +12,7 @@
 #include <limits>
 #include <mutex>
 #include <sys/mman.h>
+#include <vector>
 
 namespace supermodal::modal
 {
@@ -50,57 +54,28 @@ void use_huge_pages_for_cholmod()
     });
 }
 
-} // namespace
-
-struct SparseCholesky::Impl {
-    cholmod_common common{};
-    cholmod_factor* factor = nullptr;
-    // Solve workspaces, reused across solves (cholmod_solve2 grows them on first use).
-    cholmod_dense* x = nullptr;
-    cholmod_dense* y = nullptr;
-    cholmod_dense* e = nullptr;
-    cholmod_dense* b = nullptr;
-    // The same for block solves (their own, so that sizes do not alternate).
-    cholmod_dense* xs = nullptr;
-    cholmod_dense* ys = nullptr;
-    cholmod_dense* es = nullptr;
-
-    Impl()
-    {
-        use_huge_pages_for_cholmod();
-        cholmod_start(&common);
-        common.print = 0; // errors come back as a status, never on stderr
-        common.supernodal = CHOLMOD_SUPERNODAL;
-        // Default orderings: AMD, and METIS when AMD's fill is high; the one with less fill is kept.
-        // Both are deterministic, so the factor (and every mode) is the same on every run.
-    }
-    ~Impl()
-    {
-        cholmod_free_dense(&x, &common);
-        cholmod_free_dense(&y, &common);
-        cholmod_free_dense(&e, &common);
-        cholmod_free_dense(&b, &common);
-        cholmod_free_dense(&xs, &common);
-        cholmod_free_dense(&ys, &common);
-        cholmod_free_dense(&es, &common);
-        cholmod_free_factor(&factor, &common);
-        cholmod_finish(&common);
-    }
-};
-
-SparseCholesky::SparseCholesky() : m_impl(std::make_unique<Impl>()) {}
-
-SparseCholesky::~SparseCholesky() = default;
-
-bool SparseCholesky::compute(const SparseMatrix& a)
+/// True when every entry of M's pattern is in K's (both compressed, same size).
+bool pattern_inside(const SparseMatrix& m, const SparseMatrix& k)
 {
-    Impl& s = *m_impl;
-    cholmod_free_factor(&s.factor, &s.common);
-    cholmod_free_dense(&s.b, &s.common);
-    m_rows = a.rows();
-    if (!a.isCompressed() || a.rows() != a.cols())
+    if (!m.isCompressed() || m.rows() != k.rows() || m.cols() != k.cols())
         return false;
-    // A view of Eigen's compressed columns: stype 1 reads the upper triangle only.
+    const int *ko = k.outerIndexPtr(), *ki = k.innerIndexPtr();
+    const int *mo = m.outerIndexPtr(), *mi = m.innerIndexPtr();
+    for (Eigen::Index j = 0; j < k.cols(); ++j) {
+        int p = ko[j];
+        for (int q = mo[j]; q < mo[j + 1]; ++q) {
+            while (p < ko[j + 1] && ki[p] < mi[q])
+                ++p;
+            if (p == ko[j + 1] || ki[p] != mi[q])
+                return false;
+        }
+    }
+    return true;
+}
+
+/// A view of Eigen's compressed columns: stype 1 reads the upper triangle only.
+cholmod_sparse view_of(const SparseMatrix& a)
+{
     cholmod_sparse view{};
     view.nrow = view.ncol = static_cast<size_t>(a.rows());
     view.nzmax = static_cast<size_t>(a.nonZeros());
@@ -113,45 +88,109 @@ bool SparseCholesky::compute(const SparseMatrix& a)
     view.dtype = CHOLMOD_DOUBLE;
     view.sorted = 1;
     view.packed = 1;
-    s.factor = cholmod_analyze(&view, &s.common);
-    if (s.factor == nullptr)
+    return view;
+}
+
+} // namespace
+
+struct SparseCholesky::Impl {
+    cholmod_common common{};
+    cholmod_factor* symbolic = nullptr; ///< CHOLMOD's ordering and supernodes; the values are ours
+    SupernodalPattern pattern;
+    std::unique_ptr<double, decltype(&std::free)> values{nullptr, &std::free};
+    mutable RowMatrix work; ///< a solve's right-hand sides in the factor's order
+
+    Impl()
+    {
+        use_huge_pages_for_cholmod();
+        cholmod_start(&common);
+        common.print = 0; // errors come back as a status, never on stderr
+        common.supernodal = CHOLMOD_SUPERNODAL;
+    }
+    ~Impl()
+    {
+        cholmod_free_factor(&symbolic, &common);
+        cholmod_finish(&common);
+    }
+
+    bool analyze(const SparseMatrix& a, std::span<const int> order);
+    void solve(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::MatrixXd& y) const;
+};
+
+bool SparseCholesky::Impl::analyze(const SparseMatrix& a, std::span<const int> order)
+{
+    cholmod_sparse view = view_of(a);
+    // All orderings are deterministic, so the factor (and every mode) is the same on every run.
+    if (order.size() == static_cast<size_t>(a.rows())) {
+        common.nmethods = 2; // method 0: the given order, method 1: AMD
+        symbolic = cholmod_analyze_p(&view, const_cast<int*>(order.data()), nullptr, 0, &common);
+    } else {
+        common.nmethods = 0; // AMD, and METIS when AMD's fill is high
+        symbolic = cholmod_analyze(&view, &common);
+    }
+    if (symbolic == nullptr || !symbolic->is_super)
         return false;
-    if (!cholmod_factorize(&view, s.factor, &s.common) || s.common.status != CHOLMOD_OK ||
-        s.factor->minor < s.factor->n)
+    pattern.n = static_cast<int>(a.rows());
+    pattern.nsuper = static_cast<int>(symbolic->nsuper);
+    pattern.super = static_cast<const int*>(symbolic->super);
+    pattern.pi = static_cast<const int*>(symbolic->pi);
+    pattern.px = static_cast<const int*>(symbolic->px);
+    pattern.rows = static_cast<const int*>(symbolic->s);
+    pattern.perm = static_cast<const int*>(symbolic->Perm);
+    pattern.value_count = symbolic->xsize;
+    values.reset(static_cast<double*>(cholmod_block_alloc(pattern.value_count * sizeof(double))));
+    return values != nullptr;
+}
+
+void SparseCholesky::Impl::solve(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::MatrixXd& y) const
+{
+    work.resize(x.rows(), x.cols());
+    for (int i = 0; i < pattern.n; ++i)
+        work.row(i) = x.row(pattern.perm[i]);
+    supernodal_solve(pattern, values.get(), work);
+    y.resize(x.rows(), x.cols());
+    for (int i = 0; i < pattern.n; ++i)
+        y.row(pattern.perm[i]) = work.row(i);
+}
+
+SparseCholesky::SparseCholesky() : m_impl(std::make_unique<Impl>()) {}
+
+SparseCholesky::~SparseCholesky() = default;
+
+bool SparseCholesky::compute_shifted(const SparseMatrix& k, const SparseMatrix* m, double sigma,
+                                     std::span<const int> order)
+{
+    Impl& s = *m_impl;
+    cholmod_free_factor(&s.symbolic, &s.common);
+    s.values.reset();
+    m_factored = false;
+    m_rows = k.rows();
+    if (!k.isCompressed() || k.rows() != k.cols())
         return false;
-    s.b = cholmod_allocate_dense(view.nrow, 1, view.nrow, CHOLMOD_REAL, &s.common);
-    return s.b != nullptr;
+    if (m != nullptr && !pattern_inside(*m, k)) { // rare: form the sum, then factor it
+        SparseMatrix sum = k - sigma * *m;
+        sum.makeCompressed();
+        return compute_shifted(sum, nullptr, 0.0, order);
+    }
+    if (!s.analyze(k, order))
+        return false;
+    m_factored = supernodal_factor(s.pattern, {&k, m, sigma}, s.values.get());
+    return m_factored;
 }
 
 void SparseCholesky::solve(const double* x, double* y) const
 {
-    Impl& s = *m_impl;
-    const auto n = static_cast<size_t>(m_rows);
-    std::memcpy(s.b->x, x, n * sizeof(double));
-    if (!cholmod_solve2(CHOLMOD_A, s.factor, s.b, nullptr, &s.x, nullptr, &s.y, &s.e, &s.common) ||
-        s.x == nullptr) { // out of memory: NaNs make the eigen solve report no convergence
-        std::fill(y, y + n, std::numeric_limits<double>::quiet_NaN());
-        return;
-    }
-    std::memcpy(y, s.x->x, n * sizeof(double));
+    Eigen::MatrixXd v;
+    if (!solve(Eigen::Map<const Eigen::MatrixXd>(x, m_rows, 1), v)) // the eigen solve sees no convergence
+        v.setConstant(m_rows, 1, std::numeric_limits<double>::quiet_NaN());
+    std::copy(v.data(), v.data() + m_rows, y);
 }
 
-bool SparseCholesky::solve(const Eigen::MatrixXd& x, Eigen::MatrixXd& y) const
+bool SparseCholesky::solve(Eigen::Ref<const Eigen::MatrixXd> x, Eigen::MatrixXd& y) const
 {
-    Impl& s = *m_impl;
-    // A view of x's columns (CHOLMOD only reads B); x is contiguous column-major.
-    cholmod_dense view{};
-    view.nrow = static_cast<size_t>(x.rows());
-    view.ncol = static_cast<size_t>(x.cols());
-    view.nzmax = view.nrow * view.ncol;
-    view.d = view.nrow;
-    view.x = const_cast<double*>(x.data());
-    view.xtype = CHOLMOD_REAL;
-    view.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(CHOLMOD_A, s.factor, &view, nullptr, &s.xs, nullptr, &s.ys, &s.es, &s.common) ||
-        s.xs == nullptr)
+    if (!m_factored || x.rows() != m_rows)
         return false;
-    y = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(s.xs->x), x.rows(), x.cols());
+    m_impl->solve(x, y);
     return true;
 }
 
