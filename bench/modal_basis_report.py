@@ -7,8 +7,11 @@ starts at about 6 MB). Rows: label, cells per axis, dofs, wall and CPU seconds o
 (assembly + eigen solve + checks), the assembly and eigen split (wall), peak MB, the solver's rounds,
 whether completeness was confirmed, and the first and twelfth frequency (equal across builds to
 the digits shown: the same modes).
-Usage: bench/modal_basis_report.py OUT.csv [--cells 4,6,8,10,12] LABEL[:COMMIT]=BINARY [...]
-       bench/modal_basis_report.py --plot OUT.csv   (the plot again from the CSV)
+With --repeat N every size runs N times, the builds alternating run by run (so a change in the shared
+machine's load falls on all of them alike), and the row is the run of median CPU time.
+Usage: bench/modal_basis_report.py OUT.csv [--cells 4,6,8,10,12] [--repeat N] LABEL[:COMMIT]=BINARY [...]
+       bench/modal_basis_report.py --plot OUT.csv [LABEL ...]   (the plot again from the CSV: all
+       builds, or those named)
 """
 import csv
 import datetime
@@ -38,24 +41,38 @@ def main():
     args = sys.argv[1:]
     out_csv = args.pop(0)
     cells = [4, 6, 8, 10, 12]
-    if args and args[0] == "--cells":
-        cells = [int(c) for c in args[1].split(",")]
+    repeat = 1
+    while args and args[0] in ("--cells", "--repeat"):
+        if args[0] == "--cells":
+            cells = [int(c) for c in args[1].split(",")]
+        else:
+            repeat = int(args[1])
         args = args[2:]
     head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     date = datetime.date.today().isoformat()
     machine = f"{platform.node()} ({os.cpu_count()} cores)"
-    lines = []
+    builds = []
     for build in args:
         label, binary = build.split("=", 1)
         label, _, commit = label.partition(":")
+        builds.append((label, commit or head, binary))
+    runs = {}
+    for n in cells:
+        for _ in range(repeat):
+            for label, _, binary in builds:
+                runs.setdefault((label, n), []).append(run(binary, n))
+    lines = []
+    for label, commit, _ in builds:
         for n in cells:
-            r = run(binary, n)
-            lines.append([date, machine, cpu_name(), commit or head, label, n, int(float(r["dofs"])),
+            by_cpu = sorted(runs[(label, n)], key=lambda r: float(r["cpu_time"]))
+            r = by_cpu[len(by_cpu) // 2]
+            lines.append([date, machine, cpu_name(), commit, label, n, int(float(r["dofs"])),
                           f"{float(r['real_time']):.3f}", f"{float(r['cpu_time']):.3f}",
                           f"{float(r['assembly_s']):.3f}", f"{float(r['eigen_s']):.3f}",
                           f"{float(r['peak_mb']):.0f}", int(float(r["rounds"])), int(float(r["checked"])),
                           f"{float(r['f1_hz']):.6f}", f"{float(r['f12_hz']):.6f}"])
-            print(",".join(str(v) for v in lines[-1]), flush=True)
+            print(",".join(str(v) for v in lines[-1]), "  cpu s of each run:",
+                  " ".join(f"{float(x['cpu_time']):.2f}" for x in runs[(label, n)]), flush=True)
     with open(out_csv, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(HEADER)
@@ -81,6 +98,8 @@ def plot(out_csv, lines):
                     f.write(f"{r[6]} {r[8]} {r[11]}\n")
             f.write("\n\n")
     png = out_csv[:-4] + ".png"
+    first, last = min(r[0] for r in lines), max(r[0] for r in lines)
+    dates = first if first == last else f"{first} to {last}"
     curves_s = ", ".join(f'"{data}" index {i} using 1:2 with linespoints lw 2 title "{b}"'
                          for i, b in enumerate(builds))
     curves_mb = ", ".join(f'"{data}" index {i} using 1:3 with linespoints lw 2 title "{b}"'
@@ -88,7 +107,7 @@ def plot(out_csv, lines):
     script = f"""
 set terminal pngcairo size 960,420 font "Helvetica,11" noenhanced
 set output "{png}"
-set multiplot layout 1,2 title "Modal basis build, rounded cube of 20-node cells, 12 modes ({lines[0][0]}, {lines[0][1]})"
+set multiplot layout 1,2 title "Modal basis build, rounded cube of 20-node cells, 12 modes ({dates}, {lines[0][1]})"
 set logscale xy
 set grid
 set key top left
@@ -104,14 +123,15 @@ unset multiplot
     print(png)
 
 
-def replot(out_csv):
+def replot(out_csv, labels):
     with open(out_csv, encoding="utf-8") as f:
-        plot(out_csv, list(csv.reader(f))[1:])
+        rows = list(csv.reader(f))[1:]
+    plot(out_csv, [r for r in rows if not labels or r[4] in labels])
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
-        replot(sys.argv[2])
+    if len(sys.argv) >= 3 and sys.argv[1] == "--plot":
+        replot(sys.argv[2], sys.argv[3:])
     elif len(sys.argv) >= 3:
         main()
     else:
