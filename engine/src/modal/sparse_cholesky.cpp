@@ -8,9 +8,7 @@
 #include <algorithm>
 #include <cholmod.h>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
-#include <mutex>
 #include <sys/mman.h>
 #include <vector>
 
@@ -22,36 +20,20 @@ namespace
 
 constexpr size_t k_huge_page = size_t{2} << 20; // bytes
 
-/// CHOLMOD's allocations, with large blocks (the factor, above all) on 2 MB transparent huge pages
-/// where the kernel allows them on request: the factor is written once right after it is allocated,
-/// and touching it 4 kB page by page costs about as much as computing it (page faults in a VM).
-void* cholmod_block_alloc(size_t bytes)
+/// The factor's values on 2 MB transparent huge pages where the kernel allows them on request: the
+/// factor is written once right after it is allocated, and touching it 4 kB page by page costs about
+/// as much as computing it (page faults in a VM). Freed with std::free.
+double* alloc_on_huge_pages(size_t count)
 {
+    if (count > std::numeric_limits<size_t>::max() / sizeof(double) - k_huge_page)
+        return nullptr;
+    const size_t bytes = count * sizeof(double);
     if (bytes < 4 * k_huge_page)
-        return std::malloc(bytes);
+        return static_cast<double*>(std::malloc(bytes));
     void* p = std::aligned_alloc(k_huge_page, (bytes + k_huge_page - 1) / k_huge_page * k_huge_page);
     if (p != nullptr)
         madvise(p, bytes, MADV_HUGEPAGE); // advice only: a refusal changes nothing but speed
-    return p;
-}
-
-void* cholmod_block_calloc(size_t count, size_t size)
-{
-    if (count != 0 && size > std::numeric_limits<size_t>::max() / count)
-        return nullptr;
-    void* p = cholmod_block_alloc(count * size);
-    if (p != nullptr)
-        std::memset(p, 0, count * size);
-    return p;
-}
-
-void use_huge_pages_for_cholmod()
-{
-    static std::once_flag once;
-    std::call_once(once, [] {
-        SuiteSparse_config.malloc_func = cholmod_block_alloc;
-        SuiteSparse_config.calloc_func = cholmod_block_calloc;
-    });
+    return static_cast<double*>(p);
 }
 
 /// True when every entry of M's pattern is in K's (both compressed, same size).
@@ -102,7 +84,6 @@ struct SparseCholesky::Impl {
 
     Impl()
     {
-        use_huge_pages_for_cholmod();
         cholmod_start(&common);
         common.print = 0; // errors come back as a status, never on stderr
         common.supernodal = CHOLMOD_SUPERNODAL;
@@ -138,7 +119,7 @@ bool SparseCholesky::Impl::analyze(const SparseMatrix& a, std::span<const int> o
     pattern.rows = static_cast<const int*>(symbolic->s);
     pattern.perm = static_cast<const int*>(symbolic->Perm);
     pattern.value_count = symbolic->xsize;
-    values.reset(static_cast<double*>(cholmod_block_alloc(pattern.value_count * sizeof(double))));
+    values.reset(alloc_on_huge_pages(pattern.value_count));
     return values != nullptr;
 }
 

@@ -60,7 +60,7 @@ ConstBlock supernode_block(const SupernodalPattern& p, const double* values, int
 }
 
 /// Factors a panel in place: its top square becomes lower triangular L₁₁, the rows below L₂₁ L₁₁ᵀ = B.
-/// Column sweeps, vectorized along the columns.
+/// Column sweeps: each column is updated by the ones before it as whole vectors.
 bool factor_panel(Eigen::Block<Block> p)
 {
     const Eigen::Index m = p.rows();
