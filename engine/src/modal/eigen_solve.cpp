@@ -193,16 +193,13 @@ bool solve_dense(const LatticeModel& model, int mode_count, int max_kept, double
 
 /// Sparse: the rigid vectors followed by at least `wanted` elastic ones, confirmed complete below the
 /// cut unless out_checked comes back false.
-bool solve_sparse(const LatticeModel& model, int wanted, int max_kept, double sigma, Dense& out_vectors,
-                  int& out_rounds, bool& out_checked)
+bool solve_sparse(const LatticeModel& model, const SparseCholesky& cholesky, int wanted, int max_kept,
+                  double sigma, Dense& out_vectors, int& out_rounds, bool& out_checked)
 {
     const SparseMatrix& k = model.stiffness;
     const SparseMatrix& m = model.mass;
     Dense rigid = rigid_body_vectors(model);
     if (!m_orthonormalize(m, rigid))
-        return false;
-    SparseCholesky cholesky;
-    if (!cholesky.compute_shifted(k, &m, sigma, lattice_dissection(model)))
         return false;
     Dense found(k.rows(), 0);
     Vector values;
@@ -292,8 +289,8 @@ Dense start_block(Eigen::Index n, int columns)
 /// ‖T V s − ν V s‖_M = ‖R s_last‖, read without touching the lattice. Done when those largest ν
 /// (lowest ω²) have residuals below k_lanczos_tolerance·ν. A block of b vectors finds up to b copies
 /// of a repeated eigenvalue, so no confirmation run is needed while every cluster is smaller than b.
-bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept, double sigma,
-                        Dense& out_vectors, bool& out_checked)
+bool solve_sparse_block(const LatticeModel& model, const SparseCholesky& cholesky, int mode_count,
+                        int max_kept, double sigma, Dense& out_vectors, bool& out_checked)
 {
     const SparseMatrix& k = model.stiffness;
     const SparseMatrix& m = model.mass;
@@ -307,10 +304,6 @@ bool solve_sparse_block(const LatticeModel& model, int mode_count, int max_kept,
     const auto project = [&](Dense& y) { y.noalias() -= rigid * (m_rigid.transpose() * y).eval(); };
     const Eigen::Index max_dim = std::min<Eigen::Index>(n - rigid.cols() - b, k_block_max_dim) / b * b;
     if (max_dim < mode_count + 1 + b)
-        return false;
-
-    SparseCholesky cholesky;
-    if (!cholesky.compute_shifted(k, &m, sigma, lattice_dissection(model)))
         return false;
 
     Dense basis(n, max_dim), m_basis(n, max_dim);
@@ -397,16 +390,21 @@ Result<ModeSolution> solve_modes(const LatticeModel& model, int mode_count, Moda
     out.sparse = out.sparse && mode_count + 10 < n - 6;
     Dense vectors;
     bool solved = false;
+    // One factorization of K − σM serves the block iteration and, where that gives up, the reference.
+    SparseCholesky cholesky;
+    const bool factored = out.sparse && cholesky.compute_shifted(model.stiffness, &model.mass, sigma,
+                                                                 lattice_dissection(model));
     if (!out.sparse) {
         solved = solve_dense(model, mode_count, max_kept, sigma, vectors);
-    } else if (method == SparseMethod::Block) {
-        solved = solve_sparse_block(model, mode_count, max_kept, sigma, vectors, out.inertia_checked);
+    } else if (factored && method == SparseMethod::Block) {
+        solved =
+            solve_sparse_block(model, cholesky, mode_count, max_kept, sigma, vectors, out.inertia_checked);
         out.block = solved;
         out.rounds = 1;
     }
-    if (out.sparse && !solved) // the reference path, also when the block iteration gives up
-        solved =
-            solve_sparse(model, mode_count + 1, max_kept, sigma, vectors, out.rounds, out.inertia_checked);
+    if (factored && !solved) // the reference path, also when the block iteration gives up
+        solved = solve_sparse(model, cholesky, mode_count + 1, max_kept, sigma, vectors, out.rounds,
+                              out.inertia_checked);
     Vector values;
     Dense ritz;
     if (!solved || !rayleigh_ritz(model.stiffness, model.mass, vectors, values, ritz) ||

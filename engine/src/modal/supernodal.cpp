@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace supermodal::modal
@@ -47,16 +48,12 @@ template <class A> void subtract_lower_product(Eigen::Map<Eigen::MatrixXd>& c, c
     subtract_product(c.bottomRows(below), a.bottomRows(below), a.topRows(cols));
 }
 
-Block supernode_block(const SupernodalPattern& p, double* values, int s)
+/// Supernode s's columns of the factor, column-major (a read-only view where `values` is const).
+template <class T> auto supernode_block(const SupernodalPattern& p, T* values, int s)
 {
+    using View = std::conditional_t<std::is_const_v<T>, ConstBlock, Block>;
     const int nrow = p.pi[s + 1] - p.pi[s];
-    return {values + p.px[s], nrow, p.super[s + 1] - p.super[s], Eigen::OuterStride<>(nrow)};
-}
-
-ConstBlock supernode_block(const SupernodalPattern& p, const double* values, int s)
-{
-    const int nrow = p.pi[s + 1] - p.pi[s];
-    return {values + p.px[s], nrow, p.super[s + 1] - p.super[s], Eigen::OuterStride<>(nrow)};
+    return View{values + p.px[s], nrow, p.super[s + 1] - p.super[s], Eigen::OuterStride<>(nrow)};
 }
 
 /// Factors a panel in place: its top square becomes lower triangular L₁₁, the rows below L₂₁ L₁₁ᵀ = B.
@@ -285,6 +282,7 @@ bool supernodal_factor(const SupernodalPattern& p, const ShiftedMatrix& a, doubl
     }
     return true;
 }
+
 void supernodal_solve(const SupernodalPattern& p, const double* values, RowMatrix& y)
 {
     std::vector<double> ys;
