@@ -81,15 +81,25 @@ double grid_cell(std::span<const BroadphaseProxy> proxies, std::vector<double>& 
     return cell;
 }
 
-// Box i's entries, one per cell it covers; false if it is too big to bin.
+// A key's three cell coordinates, offset as packed (each below 2^21).
+BroadphaseScratch::Cell unpack(uint64_t key)
+{
+    constexpr uint64_t mask = (uint64_t{1} << 21) - 1;
+    return {static_cast<uint32_t>(key >> 42), static_cast<uint32_t>((key >> 21) & mask),
+            static_cast<uint32_t>(key & mask)};
+}
+
+// Box i's entries, one per cell it covers, and the cell of its lower corner; false if it is too big to
+// bin.
 bool bin_box(const Aabb& b, uint32_t i, double inv_cell, double big_extent,
-             std::vector<BroadphaseScratch::Entry>& out)
+             std::vector<BroadphaseScratch::Entry>& out, BroadphaseScratch::Cell& out_low)
 {
     if (!(max_extent(b) <= big_extent) || !is_finite(b.min) || !is_finite(b.max))
         return false;
     const int64_t x0 = cell_coord(b.min.x, inv_cell), x1 = cell_coord(b.max.x, inv_cell);
     const int64_t y0 = cell_coord(b.min.y, inv_cell), y1 = cell_coord(b.max.y, inv_cell);
     const int64_t z0 = cell_coord(b.min.z, inv_cell), z1 = cell_coord(b.max.z, inv_cell);
+    out_low = unpack(cell_key(x0, y0, z0));
     for (int64_t x = x0; x <= x1; ++x)
         for (int64_t y = y0; y <= y1; ++y)
             for (int64_t z = z0; z <= z1; ++z)
@@ -133,12 +143,14 @@ void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, const Para
     io.part_entries.resize(std::max(io.part_entries.size(), parts));
     io.part_other_entries.resize(std::max(io.part_other_entries.size(), parts));
     io.part_big.resize(std::max(io.part_big.size(), parts));
+    io.low_cells.resize(proxies.size());
     par.for_parts(proxies.size(), k_min_boxes_per_part, [&](size_t part, size_t begin, size_t end) {
         std::vector<BroadphaseScratch::Entry>& entries = io.part_entries[part];
         entries.clear();
         io.part_big[part].clear();
         for (size_t i = begin; i < end; ++i)
-            if (!bin_box(proxies[i].box, static_cast<uint32_t>(i), inv_cell, big_extent, entries))
+            if (!bin_box(proxies[i].box, static_cast<uint32_t>(i), inv_cell, big_extent, entries,
+                         io.low_cells[i]))
                 io.part_big[part].push_back(static_cast<uint32_t>(i));
         // By cell, then box: entries are made box by box, so their boxes already ascend and one stable
         // pass by cell sorts by both.
@@ -151,22 +163,22 @@ void bin_boxes(std::span<const BroadphaseProxy> proxies, double cell, const Para
 }
 
 // The pairs of one cell's entries; a pair sharing several cells is reported only in the cell holding
-// the corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap.
-void pairs_in_cell(std::span<const BroadphaseProxy> proxies, std::span<const BroadphaseScratch::Entry> cell,
-                   double inv_cell, std::vector<BodyPair>& out_pairs)
+// the corner max(min_p, min_q) of the boxes' overlap, which both boxes cover when they overlap. That
+// cell is the larger of the two lower corners' cells on each axis (cell_coord never decreases), so it
+// is found from the cells bin_box noted, with no rounding: the cheapest test, so it goes first.
+void pairs_in_cell(std::span<const BroadphaseProxy> proxies, std::span<const BroadphaseScratch::Cell> low,
+                   std::span<const BroadphaseScratch::Entry> cell, std::vector<BodyPair>& out_pairs)
 {
+    const BroadphaseScratch::Cell here = unpack(cell[0].key);
     for (size_t i = 0; i < cell.size(); ++i) {
+        const BroadphaseScratch::Cell& li = low[cell[i].proxy];
         const BroadphaseProxy& p = proxies[cell[i].proxy];
         for (size_t j = i + 1; j < cell.size(); ++j) {
-            const BroadphaseProxy& q = proxies[cell[j].proxy];
-            // The cheap tests of add_pair() first: most boxes sharing a cell do not overlap.
-            if (!may_pair(p, q) || !overlaps(p.box, q.box))
+            const BroadphaseScratch::Cell& lj = low[cell[j].proxy];
+            if (std::max(li.x, lj.x) != here.x || std::max(li.y, lj.y) != here.y ||
+                std::max(li.z, lj.z) != here.z)
                 continue;
-            const uint64_t owner = cell_key(cell_coord(std::max(p.box.min.x, q.box.min.x), inv_cell),
-                                            cell_coord(std::max(p.box.min.y, q.box.min.y), inv_cell),
-                                            cell_coord(std::max(p.box.min.z, q.box.min.z), inv_cell));
-            if (owner == cell[0].key)
-                add_pair(p, q, out_pairs);
+            add_pair(p, proxies[cell[j].proxy], out_pairs);
         }
     }
 }
@@ -181,15 +193,15 @@ size_t cell_start(std::span<const BroadphaseScratch::Entry> entries, size_t i)
 
 // Pairs within the cells of entries [begin, end) (whole cells: a range starting inside a cell starts at
 // the next one, and ending inside one runs to its end).
-void pairs_in_range(std::span<const BroadphaseProxy> proxies,
+void pairs_in_range(std::span<const BroadphaseProxy> proxies, std::span<const BroadphaseScratch::Cell> low,
                     std::span<const BroadphaseScratch::Entry> entries, size_t begin, size_t end,
-                    double inv_cell, std::vector<BodyPair>& out_pairs)
+                    std::vector<BodyPair>& out_pairs)
 {
     for (size_t first = cell_start(entries, begin), stop = cell_start(entries, end); first < stop;) {
         size_t last = first + 1;
         while (last < entries.size() && entries[last].key == entries[first].key)
             ++last;
-        pairs_in_cell(proxies, entries.subspan(first, last - first), inv_cell, out_pairs);
+        pairs_in_cell(proxies, low, entries.subspan(first, last - first), out_pairs);
         first = last;
     }
 }
@@ -211,10 +223,9 @@ void pairs_of_big(std::span<const BroadphaseProxy> proxies, std::span<const uint
 
 // The pairs of the cells and of the big boxes, each thread part's sorted there, then merged: sorted by
 // key, each once.
-void find_pairs(std::span<const BroadphaseProxy> proxies, double cell, const Parallel& par,
-                BroadphaseScratch& io, std::vector<BodyPair>& out_pairs)
+void find_pairs(std::span<const BroadphaseProxy> proxies, const Parallel& par, BroadphaseScratch& io,
+                std::vector<BodyPair>& out_pairs)
 {
-    const double inv_cell = 1.0 / cell;
     const std::span<const BroadphaseScratch::Entry> entries = io.entries;
     // Each part takes its share of the cells and of the boxes the big ones are tested against, so its
     // ranges come from `parts` itself (the same count for_parts splits `work` into).
@@ -225,8 +236,8 @@ void find_pairs(std::span<const BroadphaseProxy> proxies, double cell, const Par
     par.for_parts(work, k_min_boxes_per_part, [&](size_t part, size_t, size_t) {
         std::vector<BodyPair>& pairs = io.part_pairs[part];
         pairs.clear();
-        pairs_in_range(proxies, entries, Parallel::part_begin(entries.size(), parts, part),
-                       Parallel::part_begin(entries.size(), parts, part + 1), inv_cell, pairs);
+        pairs_in_range(proxies, io.low_cells, entries, Parallel::part_begin(entries.size(), parts, part),
+                       Parallel::part_begin(entries.size(), parts, part + 1), pairs);
         if (!io.big.empty())
             pairs_of_big(proxies, io.big, Parallel::part_begin(proxies.size(), parts, part),
                          Parallel::part_begin(proxies.size(), parts, part + 1), pairs);
@@ -245,7 +256,7 @@ void find_overlapping_pairs(std::span<const BroadphaseProxy> proxies, Broadphase
         return;
     const double cell = grid_cell(proxies, io_scratch.extents);
     bin_boxes(proxies, cell, par, io_scratch);
-    find_pairs(proxies, cell, par, io_scratch, out_pairs);
+    find_pairs(proxies, par, io_scratch, out_pairs);
 }
 
 } // namespace supermodal

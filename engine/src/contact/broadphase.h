@@ -48,7 +48,11 @@ struct BroadphaseScratch {
         uint64_t key;   ///< Packed cell coordinates.
         uint32_t proxy; ///< Index into the proxies.
     };
+    struct Cell {
+        uint32_t x, y, z; ///< Cell coordinates, offset as in Entry::key.
+    };
     std::vector<Entry> entries;                         ///< One per (box, cell it covers).
+    std::vector<Cell> low_cells;                        ///< Per binned box: the cell of its lower corner.
     std::vector<Entry> sorted_entries;                  ///< The sort's other buffer.
     std::vector<BodyPair> sorted_pairs;                 ///< The pairs' sort's other buffer.
     std::vector<uint32_t> big;                          ///< Boxes tested against all, ascending.
