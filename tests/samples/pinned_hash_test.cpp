@@ -89,9 +89,13 @@ struct Pinned {
 // CHOLMOD's numeric factorization on the BLAS, so the board's modes differ in their last bits. Both runs
 // compared over all 400 steps: positions within 1.1e-13 m, velocities within 9e-13 m/s, angular
 // velocities within 4.3e-11 rad/s; the other three have no sparse-solved basis and keep theirs.
+// Chair, 2026-12-05 (reuse tolerances 2e-4 -> 1e-3): its steady face-patch pairs keep their stored points
+// through a five times larger move and turn (contact/manifold.h), so its trajectory parts; the demo
+// reaches the same state at its pinned step, ball on board and pile have no face-patch pair: the three
+// keep theirs.
 constexpr Pinned k_pinned[] = {
     {"demo", 400, 0xe89ae1a9cb7859f0ULL},
-    {"chair_with_dummy", 500, 0x6f642d86dd2279aeULL},
+    {"chair_with_dummy", 500, 0xae344a9ecb543fb8ULL},
     {"ball_on_board", 400, 0x73dff2b5e7091710ULL},
     {"pile", 240, 0x79e37d9f2636e774ULL},
 };
