@@ -51,16 +51,18 @@ bool box_above_plane(const Aabb& box, const ShapeDef& plane)
 
 // The old manifolds (sorted by key) walked along with a part's pairs, which ascend by key: each lookup
 // steps forward from the last instead of a binary search (that search was two fifths of collide_pair's
-// own time on a box pile). A key below the last one searches afresh, so any order finds the same.
+// own time on a box pile). The first key, and a key below the last one, search afresh, so any order
+// finds the same and a cursor made per block of pairs does not walk from the list's start.
 class ManifoldCursor
 {
   public:
     explicit ManifoldCursor(const std::vector<PairManifold>& old) : m_old(old), m_at(old.begin()) {}
     [[nodiscard]] const PairManifold* find(uint64_t key)
     {
-        if (key < m_last)
+        if (!m_started || key < m_last)
             m_at = std::lower_bound(m_old.begin(), m_old.end(), key,
                                     [](const PairManifold& x, uint64_t k) { return x.key < k; });
+        m_started = true;
         m_last = key;
         while (m_at != m_old.end() && m_at->key < key)
             ++m_at;
@@ -71,6 +73,7 @@ class ManifoldCursor
     const std::vector<PairManifold>& m_old;
     std::vector<PairManifold>::const_iterator m_at;
     uint64_t m_last = 0;
+    bool m_started = false;
 };
 
 // The narrowphase of one pair, appended to out_points; boxes holds each body's world box this substep.
