@@ -184,6 +184,10 @@ double rigid_inverse_along(const SoftPoint& p, const Vec3& d, const Vec3& arm_a,
 // The point's effective masses: along the normal with the modes, in the contact plane without them.
 void set_point_masses(SoftPoint& p)
 {
+    p.v_a = p.a.v;
+    p.v_b = p.b.v;
+    p.inv_mass_a = p.a.inv_mass;
+    p.inv_mass_b = p.b.inv_mass;
     p.arm_a = cross(p.a.r, p.normal);
     p.arm_b = cross(p.b.r, p.normal);
     p.turn_a = p.a.inv_inertia * p.arm_a;

@@ -131,10 +131,10 @@ struct RigidSides {
                                          const Vec3& arm_b)
     {
         double rate = 0.0;
-        if (p.a.v != nullptr)
-            rate += dot(p.a.v->linear, d) + dot(p.a.v->angular, arm_a);
-        if (p.b.v != nullptr)
-            rate -= dot(p.b.v->linear, d) + dot(p.b.v->angular, arm_b);
+        if (p.v_a != nullptr)
+            rate += dot(p.v_a->linear, d) + dot(p.v_a->angular, arm_a);
+        if (p.v_b != nullptr)
+            rate -= dot(p.v_b->linear, d) + dot(p.v_b->angular, arm_b);
         return rate;
     }
     [[nodiscard]] double normal_velocity(const SoftPoint& p) const
@@ -143,13 +143,13 @@ struct RigidSides {
     }
     void apply_normal(SoftPoint& p, double impulse) const
     {
-        if (free_a && p.a.inv_mass != 0.0) {
-            p.a.v->linear += (p.a.inv_mass * impulse) * p.normal;
-            p.a.v->angular += impulse * p.turn_a;
+        if (free_a && p.inv_mass_a != 0.0) {
+            p.v_a->linear += (p.inv_mass_a * impulse) * p.normal;
+            p.v_a->angular += impulse * p.turn_a;
         }
-        if (free_b && p.b.inv_mass != 0.0) {
-            p.b.v->linear -= (p.b.inv_mass * impulse) * p.normal;
-            p.b.v->angular -= impulse * p.turn_b;
+        if (free_b && p.inv_mass_b != 0.0) {
+            p.v_b->linear -= (p.inv_mass_b * impulse) * p.normal;
+            p.v_b->angular -= impulse * p.turn_b;
         }
     }
     // The friction rows likewise through theirs (SoftPoint::tangent_arm_a…).
@@ -161,24 +161,24 @@ struct RigidSides {
     void apply_tangent(SoftPoint& p, double d0, double d1) const
     {
         const Vec3 impulse = d0 * p.tangent[0] + d1 * p.tangent[1];
-        if (free_a && p.a.inv_mass != 0.0) {
-            p.a.v->linear += p.a.inv_mass * impulse;
-            p.a.v->angular += d0 * p.tangent_turn_a[0] + d1 * p.tangent_turn_a[1];
+        if (free_a && p.inv_mass_a != 0.0) {
+            p.v_a->linear += p.inv_mass_a * impulse;
+            p.v_a->angular += d0 * p.tangent_turn_a[0] + d1 * p.tangent_turn_a[1];
         }
-        if (free_b && p.b.inv_mass != 0.0) {
-            p.b.v->linear -= p.b.inv_mass * impulse;
-            p.b.v->angular -= d0 * p.tangent_turn_b[0] + d1 * p.tangent_turn_b[1];
+        if (free_b && p.inv_mass_b != 0.0) {
+            p.v_b->linear -= p.inv_mass_b * impulse;
+            p.v_b->angular -= d0 * p.tangent_turn_b[0] + d1 * p.tangent_turn_b[1];
         }
     }
     [[nodiscard]] static Vec3 spin_of(const Side& s) { return s.v == nullptr ? Vec3{} : s.v->angular; }
     [[nodiscard]] Vec3 spin(const SoftPoint& p) const { return spin_of(p.a) - spin_of(p.b); }
     void apply_spin(SoftPoint& p, const Vec3& angular_impulse) const // as push_rigid_spin()
     {
-        if (free_a && p.a.inv_mass != 0.0)
-            p.a.v->angular += p.a.inv_inertia * angular_impulse;
+        if (free_a && p.inv_mass_a != 0.0)
+            p.v_a->angular += p.a.inv_inertia * angular_impulse;
         const Vec3 on_b = -1.0 * angular_impulse;
-        if (free_b && p.b.inv_mass != 0.0)
-            p.b.v->angular += p.b.inv_inertia * on_b;
+        if (free_b && p.inv_mass_b != 0.0)
+            p.v_b->angular += p.b.inv_inertia * on_b;
     }
 };
 

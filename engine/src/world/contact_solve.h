@@ -25,23 +25,28 @@ struct ContactWorld;
 struct StepContext;
 struct StepWarnings;
 
-/// One contact point as a soft constraint for one substep.
+/// One contact point as a soft constraint for one substep. What a pass over two rigid bodies reads
+/// comes first and the set-up's data (the sides) last, so such a pass streams ~60% of the point's bytes.
 struct SoftPoint {
-    Side a, b;
+    Velocity* v_a = nullptr;     ///< a.v, copied by set_point_masses (null for the world).
+    Velocity* v_b = nullptr;     ///< b.v, likewise.
+    double inv_mass_a = 0.0;     ///< a.inv_mass [1/kg], likewise.
+    double inv_mass_b = 0.0;     ///< b.inv_mass [1/kg], likewise.
     Vec3 normal{};               ///< Unit, from b towards a, world.
-    Vec3 tangent[2]{};           ///< Unit, ⟂ normal and each other.
     double separation = 0.0;     ///< Gap along the normal [m], < 0 when overlapping.
     double normal_mass = 0.0;    ///< 1 / (n·K·n) [kg].
-    double tangent_mass[2]{};    ///< [kg].
     double normal_impulse = 0.0; ///< Accumulated this substep, ≥ 0 [N·s].
-    double tangent_impulse[2]{}; ///< Accumulated this substep [N·s].
-    double approach = 0.0;       ///< Normal velocity before the solve [m/s] (< 0: closing).
-    double depth = 0.0;          ///< Penetration found by the narrowphase [m].
     SoftCoefficients soft{};     ///< The point's spring (stiffened by the load it carries).
     // The normal row's angular terms, for the passes over two rigid bodies: r × n [m] and I⁻¹(r × n)
     // [1/(kg·m)] of each side (set_point_masses).
     Vec3 arm_a{}, arm_b{}, turn_a{}, turn_b{};
+    Vec3 tangent[2]{};           ///< Unit, ⟂ normal and each other.
+    double tangent_mass[2]{};    ///< [kg].
+    double tangent_impulse[2]{}; ///< Accumulated this substep [N·s].
     Vec3 tangent_arm_a[2]{}, tangent_arm_b[2]{}, tangent_turn_a[2]{}, tangent_turn_b[2]{}; ///< Same, r × t.
+    double approach = 0.0; ///< Normal velocity before the solve [m/s] (< 0: closing).
+    double depth = 0.0;    ///< Penetration found by the narrowphase [m].
+    Side a, b;
 };
 
 /// One touching pair's rows: its points, and its pair-wide settings and rolling row.
