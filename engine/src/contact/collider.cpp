@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "contact/collider.h"
 
+#include "geometry/aabb.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,20 +14,6 @@ namespace
 // 6 buckets per axis: a resting contact touches one face layer (~1/6 of the samples, fewer at a corner)
 // while the per-bucket box test stays cheaper than the samples it skips.
 constexpr int k_buckets_per_axis = 6;
-
-Aabb empty_box()
-{
-    constexpr double k_big = 1e300;
-    return {{k_big, k_big, k_big}, {-k_big, -k_big, -k_big}};
-}
-
-void grow(Aabb& box, const Vec3& p)
-{
-    for (int i = 0; i < 3; ++i) {
-        box.min[i] = std::min(box.min[i], p[i]);
-        box.max[i] = std::max(box.max[i], p[i]);
-    }
-}
 
 std::shared_ptr<const SampleSet> bucket_samples(std::vector<SurfaceSample> raw, double spacing)
 {
@@ -100,10 +88,7 @@ Collider make_collider(const ShapeDef& shape, const Vec3& com_shape, double spac
     // The exact box of the shape (support map / tessellation), not the samples' box: axis extremes
     // are rarely samples, and at ε ≥ 2 they can lie several spacings beyond the nearest one.
     const Aabb exact = world_aabb(shape, -com_shape, Quat::identity());
-    for (int i = 0; i < 3; ++i) {
-        c.local_box.min[i] = std::min(c.local_box.min[i], exact.min[i]);
-        c.local_box.max[i] = std::max(c.local_box.max[i], exact.max[i]);
-    }
+    grow(c.local_box, exact);
     const Vec3 extent = c.local_box.max - c.local_box.min;
     c.thickness = std::min({extent.x, extent.y, extent.z});
     c.samples = bucket_samples(std::move(raw), h);

@@ -81,19 +81,6 @@ MeshCache::~MeshCache()
     }
 }
 
-Aabb bounds_of(std::span<const Vec3> points)
-{
-    if (points.empty())
-        return {};
-    Aabb box{points[0], points[0]};
-    for (const Vec3& p : points)
-        for (int k = 0; k < 3; ++k) {
-            box.min[k] = std::min(box.min[k], p[k]);
-            box.max[k] = std::max(box.max[k], p[k]);
-        }
-    return box;
-}
-
 const GpuMesh& MeshCache::get(const ShapeDef& shape, int tessellation, MeshSpacing spacing,
                               const std::string& key)
 {

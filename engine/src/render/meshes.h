@@ -3,6 +3,7 @@
 // "skin" that moves the rest mesh's vertices by the modal field every frame. Internal to render/.
 #pragma once
 
+#include "geometry/aabb.h"
 #include "supermodal/geometry.h"
 #include "supermodal/modal.h"
 
@@ -25,9 +26,6 @@ struct GpuMesh {
     std::vector<Vec3> rest_face_normals; ///< Area-weighted face normals averaged per vertex, unit.
     Aabb bounds;                         ///< Of the vertices, shape frame [m].
 };
-
-/// The smallest box holding the points (a zero box at the origin when there are none).
-[[nodiscard]] Aabb bounds_of(std::span<const Vec3> points);
 
 /// Bytes of every ShapeDef field that changes the surface: equal keys, equal surfaces.
 [[nodiscard]] std::string shape_key(const ShapeDef& shape);

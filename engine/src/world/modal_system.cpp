@@ -2,6 +2,7 @@
 #include "world/modal_system.h"
 
 #include "core/assert.h"
+#include "geometry/aabb.h"
 #include "modal/accuracy.h"
 #include "modal/adaptive.h"
 #include "modal/inverse_map.h"
@@ -12,7 +13,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace supermodal
@@ -532,14 +532,10 @@ void update_modal_surface(ModalBody& b)
         out.samples[i].point = rest.samples[i].point + u;
         max_u2 = std::max(max_u2, dot(u, u));
     }
-    constexpr double inf = std::numeric_limits<double>::infinity();
     for (size_t bucket = 0; bucket + 1 < out.start.size(); ++bucket) {
-        Aabb box{{inf, inf, inf}, {-inf, -inf, -inf}};
+        Aabb box = empty_box();
         for (uint32_t i = out.start[bucket]; i < out.start[bucket + 1]; ++i)
-            for (int a = 0; a < 3; ++a) {
-                box.min[a] = std::min(box.min[a], out.samples[i].point[a]);
-                box.max[a] = std::max(box.max[a], out.samples[i].point[a]);
-            }
+            grow(box, out.samples[i].point);
         out.bucket_box[bucket] = box;
     }
     const double grow = std::sqrt(max_u2);
