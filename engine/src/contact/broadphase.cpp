@@ -114,12 +114,8 @@ void merge_parts(std::vector<std::vector<T>>& parts, size_t count, std::vector<T
                  Key key)
 {
     auto less = [key](const T& x, const T& y) { return key(x) < key(y); };
-    if (count == 1) { // nothing to merge: the buffers trade places
-        out.swap(parts[0]);
-        return;
-    }
-    out.clear();
-    for (size_t p = 0; p < count; ++p) {
+    out.swap(parts[0]); // the first part is where the merge starts: the buffers trade places
+    for (size_t p = 1; p < count; ++p) {
         other.resize(out.size() + parts[p].size());
         std::merge(out.begin(), out.end(), parts[p].begin(), parts[p].end(), other.begin(), less);
         out.swap(other);
