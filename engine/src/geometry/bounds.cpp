@@ -12,6 +12,7 @@
 // so whether a shape was cached never changes a result: determinism does not depend on cache state.
 // An entry holds the ~3·10³ vertices of a 64-segment mesh (~70 KB); at most k_bounds_cache_capacity
 // entries are kept.
+#include "geometry/aabb.h"
 #include "geometry/bounds_internal.h"
 
 #include <algorithm>
@@ -53,15 +54,10 @@ LocalVertices make_local_vertices(const ShapeDef& shape)
 {
     LocalVertices out;
     out.points = tessellate(shape, k_bound_resolution).positions;
-    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-    for (const Vec3& v : out.points)
-        for (int i = 0; i < 3; ++i) {
-            lo[i] = std::min(lo[i], v[i]);
-            hi[i] = std::max(hi[i], v[i]);
-        }
+    const Aabb box = bounds_of(out.points);
     double extent = 0.0;
     for (int i = 0; i < 3; ++i)
-        extent = std::max(extent, 0.5 * (hi[i] - lo[i]));
+        extent = std::max(extent, 0.5 * (box.max[i] - box.min[i]));
     out.margin = k_mesh_margin_rel * extent;
     return out;
 }
@@ -124,16 +120,11 @@ Aabb vertices_aabb(const LocalVertices& local, const Vec3& position, const Quat&
     if (local.points.empty())
         return unbounded();
     const Mat3 r = to_mat3(q);
-    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-    for (const Vec3& v : local.points) {
-        const Vec3 w = r * v;
-        for (int i = 0; i < 3; ++i) {
-            lo[i] = std::min(lo[i], w[i]);
-            hi[i] = std::max(hi[i], w[i]);
-        }
-    }
+    Aabb turned = empty_box();
+    for (const Vec3& v : local.points)
+        grow(turned, r * v);
     const Vec3 pad{local.margin, local.margin, local.margin};
-    const Aabb box{position + lo - pad, position + hi + pad};
+    const Aabb box{position + turned.min - pad, position + turned.max + pad};
     return is_finite(box.min) && is_finite(box.max) ? box : unbounded();
 }
 

@@ -9,6 +9,7 @@
 //
 // The arc-length parametrisation itself (sampling.h) and its polyline tables are implemented here too:
 // the mesh is its grid, and sampling.cpp adds the layout and the area integral on top.
+#include "geometry/aabb.h"
 #include "geometry/hyperquadric_internal.h"
 #include "geometry/sampling.h"
 #include "supermodal/geometry.h"
@@ -427,13 +428,8 @@ double mesh_volume(const TriangleMesh& mesh)
         return 0.0;
     // Measuring from the centre of the vertex box keeps the triple products well conditioned for a
     // mesh far from the origin; a closed mesh's volume does not depend on the reference point.
-    Vec3 lo = mesh.positions.front(), hi = lo;
-    for (const Vec3& p : mesh.positions)
-        for (int i = 0; i < 3; ++i) {
-            lo[i] = std::min(lo[i], p[i]);
-            hi[i] = std::max(hi[i], p[i]);
-        }
-    const Vec3 o = 0.5 * (lo + hi);
+    const Aabb box = bounds_of(mesh.positions);
+    const Vec3 o = 0.5 * (box.min + box.max);
     const size_t n = mesh.positions.size();
     double six_volume = 0.0;
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
