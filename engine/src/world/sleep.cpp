@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "world/sleep.h"
 
+#include "world/integrate.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -196,21 +198,34 @@ bool is_slow(const SleepDef& d, const BodyModel& m, const Velocity& v, const Mod
     return energy2 < lin2 * m.mass.mass;
 }
 
-void update_timers(const WorldDef& def, Registry& reg, const ContactWorld& io)
+// Each awake dynamic body's timer on any thread (it writes only its own); returns whether any has run
+// for the sleep time, without which no island can fall asleep this step. Then, on this thread, a body
+// that a moving kinematic body carries or pushes stays awake with it.
+bool update_timers(const WorldDef& def, const Parallel& par, Registry& reg, const ContactWorld& io,
+                   std::vector<uint8_t>& ripe)
 {
-    reg.each<BodyModel, Velocity, Sleep>([&](Entity e, const BodyModel& m, const Velocity& v, Sleep& s) {
-        if (m.motion == MotionType::Dynamic && !s.asleep)
-            s.timer = is_slow(def.sleep, m, v, reg.find<ModalBody>(e)) ? s.timer + def.dt : 0.0;
-    });
-    // A body a moving kinematic body carries or pushes stays awake with it.
-    for (const ContactInfo& c : io.contacts) {
-        const Velocity& va = reg.get<Velocity>(c.a);
-        const Velocity& vb = reg.get<Velocity>(c.b);
-        if (reg.get<BodyModel>(c.a).motion == MotionType::Kinematic && moving(va))
-            reg.get<Sleep>(c.b).timer = 0.0;
-        if (reg.get<BodyModel>(c.b).motion == MotionType::Kinematic && moving(vb))
-            reg.get<Sleep>(c.a).timer = 0.0;
-    }
+    ripe.assign(par.part_capacity(), 0);
+    par.for_parts(
+        reg.store<BodyModel>().size(), k_min_bodies_per_part, [&](size_t part, size_t begin, size_t end) {
+            bool any = false; // one write per part: the parts' bytes share a cache line
+            reg.each_in<BodyModel, Velocity, Sleep>(
+                begin, end, [&](Entity e, const BodyModel& m, const Velocity& v, Sleep& s) {
+                    if (m.motion != MotionType::Dynamic || s.asleep)
+                        return;
+                    s.timer = is_slow(def.sleep, m, v, reg.find<ModalBody>(e)) ? s.timer + def.dt : 0.0;
+                    any = any || s.timer >= def.sleep.time;
+                });
+            ripe[part] = any ? 1 : 0;
+        });
+    const std::vector<uint8_t>& classes = io.parked.body_class;
+    if (std::find(classes.begin(), classes.end(), uint8_t{k_moving}) != classes.end())
+        for (const ContactInfo& c : io.contacts) {
+            if (class_of(classes, c.a.index) == k_moving)
+                reg.get<Sleep>(c.b).timer = 0.0;
+            if (class_of(classes, c.b.index) == k_moving)
+                reg.get<Sleep>(c.a).timer = 0.0;
+        }
+    return std::find(ripe.begin(), ripe.end(), uint8_t{1}) != ripe.end();
 }
 
 // Islands of the awake dynamic bodies, linked by the last substep's touching pairs and the unbroken
@@ -258,16 +273,18 @@ bool fall_asleep(const WorldDef& def, Registry& reg, SleepScratch& scratch)
 
 } // namespace
 
-size_t update_sleep(const WorldDef& def, Registry& reg, ContactWorld& io, const ConstraintWorld& cw,
-                    SleepScratch& scratch)
+size_t update_sleep(const WorldDef& def, const Parallel& par, Registry& reg, ContactWorld& io,
+                    const ConstraintWorld& cw, SleepScratch& scratch)
 {
     if (!def.sleep.enabled)
         return 0;
-    update_timers(def, reg, io);
     classify_bodies(reg, io.parked.body_class);
-    link_islands(io, cw, scratch.islands);
-    if (fall_asleep(def, reg, scratch))
-        park(reg, io);
+    // An island sleeps when its shortest timer has run, so no timer run means no island to build.
+    if (update_timers(def, par, reg, io, scratch.ripe)) {
+        link_islands(io, cw, scratch.islands);
+        if (fall_asleep(def, reg, scratch))
+            park(reg, io);
+    }
     size_t asleep = 0;
     for (const Sleep& s : reg.store<Sleep>().values())
         asleep += s.asleep ? 1 : 0;

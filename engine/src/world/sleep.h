@@ -11,6 +11,7 @@
 #pragma once
 
 #include "constraints/constraint_world.h"
+#include "core/parallel.h"
 #include "supermodal/world.h"
 #include "world/components.h"
 #include "world/contact_system.h"
@@ -25,6 +26,7 @@ namespace supermodal
 struct SleepScratch {
     IslandBuilder islands;
     std::vector<double> island_timer; ///< Per root entity index: its island's shortest timer [s].
+    std::vector<uint8_t> ripe;        ///< Per thread part: 1 when a body's timer has run [-].
 };
 
 [[nodiscard]] inline bool is_asleep(const Registry& reg, Entity e)
@@ -44,7 +46,8 @@ void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io);
 /// else drops the pairs with no awake dynamic body and returns false.
 [[nodiscard]] bool settle_sleeping_pairs(Registry& reg, ContactWorld& io);
 /// After the step: sleep timers, islands, and the islands that fall asleep. Returns the bodies asleep.
-size_t update_sleep(const WorldDef& def, Registry& reg, ContactWorld& io, const ConstraintWorld& cw,
-                    SleepScratch& scratch);
+/// The per-body timers run on `par`'s threads, each body writing only its own.
+size_t update_sleep(const WorldDef& def, const Parallel& par, Registry& reg, ContactWorld& io,
+                    const ConstraintWorld& cw, SleepScratch& scratch);
 
 } // namespace supermodal

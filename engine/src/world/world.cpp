@@ -196,7 +196,7 @@ void World::Impl::step()
             for (const FaultEvent& f : faults.events)
                 faults.callback(f, faults.user_data);
         // After the events, so a pair that falls asleep keeps its touch record parked, not ended.
-        profile.sleeping_count = update_sleep(def, reg, contact, constraints, scratch.sleep);
+        profile.sleeping_count = update_sleep(def, parallel, reg, contact, constraints, scratch.sleep);
     });
     // Whole-step time from the step count, so rounding does not accumulate over long runs.
     ++step_count;
