@@ -110,7 +110,7 @@ bool bin_box(const Aabb& b, uint32_t i, double inv_cell, double big_extent,
 // The lists parts[0, count), each sorted by key(item), merged into `out` (`other` is scratch): stable,
 // so of items with equal keys the earlier part's come first.
 template <class T, class Key>
-void merge_parts(std::vector<std::vector<T>>& parts, size_t count, std::vector<T>& out, std::vector<T>& other,
+void merge_parts(std::vector<PartList<T>>& parts, size_t count, std::vector<T>& out, std::vector<T>& other,
                  Key key)
 {
     auto less = [key](const T& x, const T& y) { return key(x) < key(y); };

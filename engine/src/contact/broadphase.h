@@ -51,17 +51,17 @@ struct BroadphaseScratch {
     struct Cell {
         uint32_t x, y, z; ///< Cell coordinates, offset as in Entry::key.
     };
-    std::vector<Entry> entries;                         ///< One per (box, cell it covers).
-    std::vector<Cell> low_cells;                        ///< Per binned box: the cell of its lower corner.
-    std::vector<Entry> sorted_entries;                  ///< The sort's other buffer.
-    std::vector<BodyPair> sorted_pairs;                 ///< The pairs' sort's other buffer.
-    std::vector<uint32_t> big;                          ///< Boxes tested against all, ascending.
-    std::vector<double> extents;                        ///< For the median box size.
-    std::vector<std::vector<Entry>> part_entries;       ///< Per thread part: its boxes' entries.
-    std::vector<std::vector<Entry>> part_other_entries; ///< Per thread part: its sort's other buffer.
-    std::vector<std::vector<uint32_t>> part_big;        ///< Per thread part: its boxes too big to bin.
-    std::vector<std::vector<BodyPair>> part_pairs;      ///< Per thread part: its cells' and big boxes' pairs.
-    std::vector<std::vector<BodyPair>> part_other_pairs; ///< Per thread part: its sort's other buffer.
+    std::vector<Entry> entries;                       ///< One per (box, cell it covers).
+    std::vector<Cell> low_cells;                      ///< Per binned box: the cell of its lower corner.
+    std::vector<Entry> sorted_entries;                ///< The sort's other buffer.
+    std::vector<BodyPair> sorted_pairs;               ///< The pairs' sort's other buffer.
+    std::vector<uint32_t> big;                        ///< Boxes tested against all, ascending.
+    std::vector<double> extents;                      ///< For the median box size.
+    std::vector<PartList<Entry>> part_entries;        ///< Per thread part: its boxes' entries.
+    std::vector<PartList<Entry>> part_other_entries;  ///< Per thread part: its sort's other buffer.
+    std::vector<PartList<uint32_t>> part_big;         ///< Per thread part: its boxes too big to bin.
+    std::vector<PartList<BodyPair>> part_pairs;       ///< Per thread part: its cells' and big boxes' pairs.
+    std::vector<PartList<BodyPair>> part_other_pairs; ///< Per thread part: its sort's other buffer.
 };
 
 /// All pairs whose boxes overlap (touching counts), except static–static, sorted by key(); the boxes

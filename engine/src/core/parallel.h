@@ -16,6 +16,16 @@
 namespace supermodal
 {
 
+/// Bytes kept between data that different threads write [B]: a cache line on x86 and most ARM cores is
+/// 64 B, on Apple's cores 128 B, and x86's adjacent-line prefetcher fetches lines in pairs.
+inline constexpr size_t k_thread_stride = 128;
+
+/// A list that one part of a parallel loop fills, on cache lines of its own. A std::vector's end pointer
+/// moves with every push_back: two parts' lists side by side in one array would have their threads
+/// write the same cache line for every item, each write taking the line from the other core.
+template <class T> struct alignas(k_thread_stride) PartList : std::vector<T> {
+};
+
 class Parallel
 {
   public:

@@ -83,13 +83,13 @@ struct ContactWorld {
     /// and velocity do not change then, so reusing it gives the same box) [m]; and whether it is set.
     std::vector<Aabb> sleep_boxes;
     std::vector<uint8_t> sleep_box_set;
-    std::vector<Aabb> swept;                            ///< Scratch: swept box per entity index [m], world.
-    BroadphaseScratch broadphase;                       ///< Scratch.
-    std::vector<BodyPair> pairs;                        ///< Derived: candidate pairs of this step, sorted.
-    std::vector<std::vector<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
-    std::vector<PairPoints> pair_points;                ///< Derived: per pair, where its points are.
-    std::vector<PairForce> pair_force;                  ///< Scratch: per pair, this substep's forces.
-    std::vector<ContactInfo> contacts;                  ///< Derived: touching pairs of the last substep.
+    std::vector<Aabb> swept;                         ///< Scratch: swept box per entity index [m], world.
+    BroadphaseScratch broadphase;                    ///< Scratch.
+    std::vector<BodyPair> pairs;                     ///< Derived: candidate pairs of this step, sorted.
+    std::vector<PartList<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
+    std::vector<PairPoints> pair_points;             ///< Derived: per pair, where its points are.
+    std::vector<PairForce> pair_force;               ///< Scratch: per pair, this substep's forces.
+    std::vector<ContactInfo> contacts;               ///< Derived: touching pairs of the last substep.
     std::vector<uint8_t> has_twist;             ///< Scratch: per contact, the torsional spring is active.
     std::vector<uint8_t> has_roll;              ///< Scratch: per contact, the rolling spring is active.
     std::vector<Vec3> force, torque;            ///< Scratch: per entity index.
@@ -97,7 +97,7 @@ struct ContactWorld {
     std::vector<ZetaCache> zeta_caches;         ///< Scratch: one per part.
     std::vector<std::vector<double>> modal_phi; ///< Scratch: one per part, φ at a point of a modal body.
     /// Scratch: per part, parallel to part_points, each point's normal force [N] (pairs with modes only).
-    std::vector<std::vector<double>> part_point_force;
+    std::vector<PartList<double>> part_point_force;
     ContactEvents events;  ///< Step events and the host's callback.
     SoftContacts soft;     ///< Scratch: the soft solver's rows of this substep.
     ParkedContacts parked; ///< Contacts of sleeping pairs.
