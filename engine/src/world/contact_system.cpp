@@ -23,12 +23,6 @@ constexpr double k_frequency_cap_per_rate = 0.1;
 constexpr size_t k_min_pairs_per_part = 32;
 // Largest share of the thinner body the penalty spring may need to stop an approach (stopping rule).
 constexpr double k_stop_fraction = 0.5;
-// Pairs are dealt to the threads in blocks of this many, round-robin: pairs sorted by key put all of a
-// static body's pairs (floor, walls) together, and one contiguous range per thread would hand them to
-// one thread (N = 250 ellipsoid pile, 2 threads, time on free cores: 5.2 ms per step with contiguous
-// ranges, 4.95 ms round-robin, of 8.3–8.9 ms CPU).
-constexpr size_t k_pairs_per_block = 16;
-
 Aabb body_box(const BodyModel& m, const Pose& p)
 {
     const Vec3 origin = p.position - rotate(p.orientation, m.collider->com_shape);
@@ -36,9 +30,14 @@ Aabb body_box(const BodyModel& m, const Pose& p)
 }
 
 // fn(part, begin, end) over [0, count) on the static partition (contact/penalty.h: per-pair slots).
+// One contiguous range per thread, the ranges of keep_manifolds' gather: a pair's manifold is then
+// written, gathered and read again next substep on one core. Blocks of 16 dealt round-robin balanced a
+// floor's pairs better (N = 250 pile: 4.95 against 5.2 ms per step on free cores), but on the
+// 4000-ellipsoid split pile the narrowphase took ~6% less against the solve with one range each
+// (six runs alternated), the manifolds no longer crossing between the cores.
 template <class Fn> void for_parts(const Parallel& par, size_t count, Fn&& fn)
 {
-    par.for_parts(count, k_min_pairs_per_part, fn, k_pairs_per_block);
+    par.for_parts(count, k_min_pairs_per_part, fn);
 }
 
 bool box_above_plane(const Aabb& box, const ShapeDef& plane)
@@ -50,28 +49,38 @@ bool box_above_plane(const Aabb& box, const ShapeDef& plane)
 }
 
 // The old manifolds (sorted by key) walked along with a part's pairs, which ascend by key: each lookup
-// steps forward from the last instead of a binary search (that search was two fifths of collide_pair's
-// own time on a box pile). The first key, and a key below the last one, search afresh, so any order
-// finds the same and a cursor made per block of pairs does not walk from the list's start.
-class ManifoldCursor
+// steps forward from the last in steps that double until they pass the key, then searches that last
+// step, a few probes per pair (a binary search per pair was two fifths of collide_pair's own time on a
+// box pile). The first key, and a key below the last one, search afresh, so any order finds the same.
+// One per thread part, each on cache lines of its own.
+class alignas(k_thread_stride) ManifoldCursor
 {
   public:
-    explicit ManifoldCursor(const std::vector<PairManifold>& old) : m_old(old), m_at(old.begin()) {}
+    explicit ManifoldCursor(const std::vector<PairManifold>* old = nullptr) : m_old(old) {}
     [[nodiscard]] const PairManifold* find(uint64_t key)
     {
-        if (!m_started || key < m_last)
-            m_at = std::lower_bound(m_old.begin(), m_old.end(), key,
-                                    [](const PairManifold& x, uint64_t k) { return x.key < k; });
+        const std::vector<PairManifold>& old = *m_old;
+        auto below = [](const PairManifold& x, uint64_t k) { return x.key < k; };
+        if (!m_started || key < m_last) {
+            m_at = static_cast<size_t>(std::lower_bound(old.begin(), old.end(), key, below) - old.begin());
+        } else {
+            size_t step = 1;
+            while (m_at + step < old.size() && old[m_at + step].key < key) {
+                m_at += step;
+                step *= 2;
+            }
+            const auto first = old.begin() + static_cast<std::ptrdiff_t>(m_at);
+            const auto last = old.begin() + static_cast<std::ptrdiff_t>(std::min(m_at + step, old.size()));
+            m_at = static_cast<size_t>(std::lower_bound(first, last, key, below) - old.begin());
+        }
         m_started = true;
         m_last = key;
-        while (m_at != m_old.end() && m_at->key < key)
-            ++m_at;
-        return m_at != m_old.end() && m_at->key == key ? &*m_at : nullptr;
+        return m_at < old.size() && old[m_at].key == key ? &old[m_at] : nullptr;
     }
 
   private:
-    const std::vector<PairManifold>& m_old;
-    std::vector<PairManifold>::const_iterator m_at;
+    const std::vector<PairManifold>* m_old = nullptr;
+    size_t m_at = 0; ///< The first manifold whose key is not below the last key asked.
     uint64_t m_last = 0;
     bool m_started = false;
 };
@@ -395,9 +404,10 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
                 io.boxes[e.index] = body_box(m, p);
         }
     });
+    std::vector<ManifoldCursor> cursors(par.part_capacity(), ManifoldCursor(&old_manifolds));
     for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
         std::vector<ContactPoint>& points = io.part_points[part];
-        ManifoldCursor old(old_manifolds);
+        ManifoldCursor& old = cursors[part];
         for (size_t pi = begin; pi < end; ++pi) {
             const auto first = static_cast<uint32_t>(points.size());
             collide_pair(reg, io.boxes, io.pairs[pi], def.contact, old, io.pair_manifold[pi], points,
