@@ -94,6 +94,7 @@ set title "Paired 1- and 2-thread runs of {lines[0][6]} (threads_bench BM_Paired
 set grid
 set key top left
 set yrange [1:2.1]
+set offsets 0.03, 0.03, 0, 0
 plot {series}, 1.8 with lines dt 2 lc rgb "#888888" title "1.8"
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
