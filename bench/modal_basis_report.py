@@ -18,11 +18,11 @@ import datetime
 import io
 import os
 import platform
-import shutil
 import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
+from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "cells", "dofs", "seconds", "cpu_seconds",
           "assembly_s", "eigen_s", "peak_mb", "rounds", "checked", "f1_hz", "f12_hz"]
@@ -73,17 +73,13 @@ def main():
                           f"{float(r['f1_hz']):.6f}", f"{float(r['f12_hz']):.6f}"])
             print(",".join(str(v) for v in lines[-1]), "  cpu s of each run:",
                   " ".join(f"{float(x['cpu_time']):.2f}" for x in runs[(label, n)]), flush=True)
-    with open(out_csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(HEADER)
-        w.writerows(lines)
+    write_rows(out_csv, HEADER, lines)
     plot(out_csv, lines)
 
 
 def plot(out_csv, lines):
     """CPU seconds and peak MB against dofs, one line per build (gnuplot, if installed)."""
-    if not shutil.which("gnuplot"):
-        print("gnuplot not found: no plot")
+    if not have_gnuplot():
         return
     builds = []
     for r in lines:
@@ -118,15 +114,11 @@ set ylabel "peak resident MB"
 plot {curves_mb}
 unset multiplot
 """
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    os.remove(data)
-    print(png)
+    gnuplot(script, data, png)
 
 
 def replot(out_csv, labels):
-    with open(out_csv, encoding="utf-8") as f:
-        rows = list(csv.reader(f))[1:]
-    plot(out_csv, [r for r in rows if not labels or r[4] in labels])
+    plot(out_csv, [r for r in read_rows(out_csv) if not labels or r[4] in labels])
 
 
 if __name__ == "__main__":

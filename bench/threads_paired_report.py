@@ -16,12 +16,12 @@ import datetime
 import io
 import os
 import platform
-import shutil
 import statistics
 import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
+from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "round", "scene", "bodies", "ms_one_thread",
           "ms_two_threads", "speedup", "copies", "same_hash"]
@@ -57,10 +57,7 @@ def main():
                               os.path.basename(scene), bodies, f"{one:.3f}", f"{two:.3f}", f"{speedup:.3f}",
                               f"{copies:.3f}", same])
                 print(",".join(map(str, lines[-1])), flush=True)
-    with open(out_csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(HEADER)
-        w.writerows(lines)
+    write_rows(out_csv, HEADER, lines)
     plot(out_csv, lines)
 
 
@@ -70,8 +67,7 @@ def plot(out_csv, lines):
         ups = [float(r[10]) for r in lines if r[4] == build]
         print(f"{build}: speed-up median {statistics.median(ups):.3f} of {len(ups)} (min {min(ups):.3f}, "
               f"max {max(ups):.3f})")
-    if not shutil.which("gnuplot"):
-        print("gnuplot not found: no plot")
+    if not have_gnuplot():
         return
     data = out_csv[:-4] + ".dat"
     builds = list(dict.fromkeys(r[4] for r in lines))
@@ -97,19 +93,11 @@ set yrange [1:2.1]
 set offsets 0.03, 0.03, 0, 0
 plot {series}, 1.8 with lines dt 2 lc rgb "#888888" title "1.8"
 """
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    os.remove(data)
-    print(png)
-
-
-def replot(out_csv):
-    """The plot again from a CSV this script wrote."""
-    with open(out_csv, encoding="utf-8") as f:
-        plot(out_csv, list(csv.reader(f))[1:])
+    gnuplot(script, data, png)
 
 
 if __name__ == "__main__":
     if len(sys.argv) == 3 and sys.argv[1] == "--plot":
-        replot(sys.argv[2])
+        plot(sys.argv[2], read_rows(sys.argv[2]))
     else:
         main()

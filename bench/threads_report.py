@@ -14,11 +14,11 @@ import datetime
 import io
 import os
 import platform
-import shutil
 import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
+from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
 
 
 def run(binary, scenes):
@@ -54,18 +54,14 @@ def main():
             lines.append([date, f"{platform.node()} ({os.cpu_count()} cores)", cpu_name(), built_from or commit,
                           label, scene,
                           bodies, threads, f"{ms:.3f}", f"{cpu:.3f}", f"{one / ms:.3f}", hsh])
-    with open(out_csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(lines)
+    write_rows(out_csv, header, lines)
     print(open(out_csv, encoding="utf-8").read())
     plot(out_csv, lines)
 
 
 def plot(out_csv, lines):
     """Bars of the 2-thread speed-up per scene and build (gnuplot, if installed)."""
-    if not shutil.which("gnuplot"):
-        print("gnuplot not found: no plot")
+    if not have_gnuplot():
         return
     data = out_csv[:-4] + ".dat"
     bars = 0
@@ -94,19 +90,11 @@ set bmargin 5
 unset key
 plot "{data}" using 2:xtic(1) lc rgb "#3d7cc9", 1 with lines dt 2 lc rgb "#888888"
 """
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    os.remove(data)
-    print(png)
-
-
-def replot(out_csv):
-    """The plot again from a CSV this script wrote."""
-    with open(out_csv, encoding="utf-8") as f:
-        plot(out_csv, list(csv.reader(f))[1:])
+    gnuplot(script, data, png)
 
 
 if __name__ == "__main__":
     if len(sys.argv) == 3 and sys.argv[1] == "--plot":
-        replot(sys.argv[2])
+        plot(sys.argv[2], read_rows(sys.argv[2]))
     else:
         main()
