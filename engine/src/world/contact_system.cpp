@@ -271,24 +271,30 @@ void drop_pairs_apart(const Registry& reg, const Parallel& par, ContactWorld& io
 // at speed v within v/ω, which must stay under half the thinner body, or bodies sink past each
 // other's centres, where the normals cancel and they stay merged (measured: ellipsoids falling
 // 1.8 m in the pile benchmark merged, 40 mm overlaps, at one substep).
-int substeps_needed(const WorldDef& def, const Registry& reg, const ContactWorld& io)
+int substeps_needed(const WorldDef& def, const Registry& reg, const Parallel& par, ContactWorld& io)
 {
     const double dt = def.dt;
     const double stop_factor = 2.0 * std::numbers::pi * k_frequency_cap_per_rate * k_stop_fraction;
     const double factor = def.contact.frequency_hz > 0.0
                               ? def.contact.speculative_speed_factor
                               : std::min(def.contact.speculative_speed_factor, stop_factor);
-    double needed = def.substep_count;
-    for (const BodyPair& pair : io.pairs) {
-        const BodyModel& ma = reg.get<BodyModel>(pair.a);
-        const BodyModel& mb = reg.get<BodyModel>(pair.b);
-        const Velocity& va = reg.get<Velocity>(pair.a);
-        const Velocity& vb = reg.get<Velocity>(pair.b);
-        const double thin = std::min(ma.shape.type == ShapeType::Plane ? 1e300 : ma.collider->thickness,
-                                     mb.shape.type == ShapeType::Plane ? 1e300 : mb.collider->thickness);
-        const double speed = length(va.linear - vb.linear);
-        needed = std::max(needed, speed * dt / (factor * thin));
-    }
+    // Each part's largest need, then the largest of those: a maximum, so the same on any threads.
+    std::vector<double>& part_needed = io.part_needed;
+    part_needed.assign(par.part_capacity(), static_cast<double>(def.substep_count));
+    for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
+        double needed = part_needed[part];
+        for (size_t pi = begin; pi < end; ++pi) {
+            const BodyPair& pair = io.pairs[pi];
+            const BodyModel& ma = reg.get<BodyModel>(pair.a);
+            const BodyModel& mb = reg.get<BodyModel>(pair.b);
+            const double thin = std::min(ma.shape.type == ShapeType::Plane ? 1e300 : ma.collider->thickness,
+                                         mb.shape.type == ShapeType::Plane ? 1e300 : mb.collider->thickness);
+            const double speed = length(reg.get<Velocity>(pair.a).linear - reg.get<Velocity>(pair.b).linear);
+            needed = std::max(needed, speed * dt / (factor * thin));
+        }
+        part_needed[part] = needed;
+    });
+    const double needed = *std::max_element(part_needed.begin(), part_needed.end());
     const int cap = def.substep_count + def.contact.max_auto_substeps;
     // Compare in double first: a huge speed or a zero thickness makes `needed` overflow int (or inf),
     // and converting that is undefined (found by the fuzzer).
@@ -329,12 +335,12 @@ int update_pairs(const WorldDef& def, const Parallel& par, Registry& reg, Contac
             break;
         find_overlapping_pairs(io.proxies, io.broadphase, io.pairs, par);
         drop_pairs_apart(reg, par, io);
-    } while (settle_sleeping_pairs(reg, io));
+    } while (settle_sleeping_pairs(par, reg, io));
     begin_step_events(io.events, io.pairs.size());
     io.support_calls = 0;
     io.touching_pairs = 0;
     io.touching_support_calls = 0;
-    return substeps_needed(def, reg, io);
+    return substeps_needed(def, reg, par, io);
 }
 
 namespace

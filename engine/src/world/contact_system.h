@@ -87,14 +87,15 @@ struct ContactWorld {
     BroadphaseScratch broadphase;                    ///< Scratch.
     std::vector<BodyPair> pairs;                     ///< Derived: candidate pairs of this step, sorted.
     std::vector<PartList<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
-    std::vector<PairPoints> pair_points;             ///< Derived: per pair, where its points are.
-    std::vector<PairForce> pair_force;               ///< Scratch: per pair, this substep's forces.
-    std::vector<ContactInfo> contacts;               ///< Derived: touching pairs of the last substep.
-    std::vector<uint8_t> has_twist;             ///< Scratch: per contact, the torsional spring is active.
-    std::vector<uint8_t> has_roll;              ///< Scratch: per contact, the rolling spring is active.
-    std::vector<Vec3> force, torque;            ///< Scratch: per entity index.
-    double max_penetration = 0.0;               ///< Derived: deepest point of the last substep [m].
-    std::vector<ZetaCache> zeta_caches;         ///< Scratch: one per part.
+    std::vector<double> part_needed;     ///< Scratch: per part, the most substeps a pair of it needs [-].
+    std::vector<PairPoints> pair_points; ///< Derived: per pair, where its points are.
+    std::vector<PairForce> pair_force;   ///< Scratch: per pair, this substep's forces.
+    std::vector<ContactInfo> contacts;   ///< Derived: touching pairs of the last substep.
+    std::vector<uint8_t> has_twist;      ///< Scratch: per contact, the torsional spring is active.
+    std::vector<uint8_t> has_roll;       ///< Scratch: per contact, the rolling spring is active.
+    std::vector<Vec3> force, torque;     ///< Scratch: per entity index.
+    double max_penetration = 0.0;        ///< Derived: deepest point of the last substep [m].
+    std::vector<ZetaCache> zeta_caches;  ///< Scratch: one per part.
     std::vector<std::vector<double>> modal_phi; ///< Scratch: one per part, φ at a point of a modal body.
     /// Scratch: per part, parallel to part_points, each point's normal force [N] (pairs with modes only).
     std::vector<PartList<double>> part_point_force;

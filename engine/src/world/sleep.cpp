@@ -24,16 +24,20 @@ bool moving(const Velocity& v)
     return v.linear != Vec3{} || v.angular != Vec3{};
 }
 
-void classify_bodies(Registry& reg, std::vector<uint8_t>& out)
+// Each body writes only its own byte (by entity index), so any threads give the same classes.
+void classify_bodies(Registry& reg, std::vector<uint8_t>& out, const Parallel& par = Parallel{})
 {
     out.assign(reg.pool().slot_count(), k_fixed);
-    reg.each<BodyModel, Sleep, Velocity>(
-        [&](Entity e, const BodyModel& m, const Sleep& s, const Velocity& v) {
-            if (m.motion == MotionType::Dynamic)
-                out[e.index] = s.asleep ? k_asleep : k_awake;
-            else if (m.motion == MotionType::Kinematic && moving(v))
-                out[e.index] = k_moving;
-        });
+    par.for_parts(reg.store<BodyModel>().size(), k_min_bodies_per_part,
+                  [&](size_t, size_t begin, size_t end) {
+                      reg.each_in<BodyModel, Sleep, Velocity>(
+                          begin, end, [&](Entity e, const BodyModel& m, const Sleep& s, const Velocity& v) {
+                              if (m.motion == MotionType::Dynamic)
+                                  out[e.index] = s.asleep ? k_asleep : k_awake;
+                              else if (m.motion == MotionType::Kinematic && moving(v))
+                                  out[e.index] = k_moving;
+                          });
+                  });
 }
 
 uint8_t class_of(const std::vector<uint8_t>& classes, uint64_t index)
@@ -134,11 +138,11 @@ void wake_every_body(Registry& reg, ContactWorld& io)
         unpark(reg, io);
 }
 
-void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io)
+void wake_jointed(const ConstraintWorld& cw, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     ParkedContacts& p = io.parked;
     const std::vector<Entity>& constraints = cw.reg.store<ConstraintModel>().entities();
-    classify_bodies(reg, p.body_class);
+    classify_bodies(reg, p.body_class, par);
     // To a fixed point: a woken island may hold a joint to another sleeping one.
     for (;;) {
         p.wake.clear();
@@ -155,10 +159,10 @@ void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io)
     }
 }
 
-bool settle_sleeping_pairs(Registry& reg, ContactWorld& io)
+bool settle_sleeping_pairs(const Parallel& par, Registry& reg, ContactWorld& io)
 {
     ParkedContacts& p = io.parked;
-    classify_bodies(reg, p.body_class);
+    classify_bodies(reg, p.body_class, par);
     p.wake.clear();
     for (const BodyPair& pair : io.pairs) {
         note_reached(reg, p.body_class, pair.a, pair.b, p.wake);
@@ -278,7 +282,7 @@ size_t update_sleep(const WorldDef& def, const Parallel& par, Registry& reg, Con
 {
     if (!def.sleep.enabled)
         return 0;
-    classify_bodies(reg, io.parked.body_class);
+    classify_bodies(reg, io.parked.body_class, par);
     // An island sleeps when its shortest timer has run, so no timer run means no island to build.
     if (update_timers(def, par, reg, io, scratch.ripe)) {
         link_islands(io, cw, scratch.islands);

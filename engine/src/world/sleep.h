@@ -40,11 +40,11 @@ void wake_island_of(Registry& reg, ContactWorld& io, Entity body);
 /// Wakes every sleeping body (sleeping turned off, settings changed).
 void wake_every_body(Registry& reg, ContactWorld& io);
 /// Before the broadphase: wakes sleeping islands that an unbroken constraint joins to an awake body.
-void wake_jointed(const ConstraintWorld& cw, Registry& reg, ContactWorld& io);
+void wake_jointed(const ConstraintWorld& cw, const Parallel& par, Registry& reg, ContactWorld& io);
 /// After the broadphase: wakes the sleeping islands an awake or moving body may reach this step and
 /// returns true (the broadphase runs again, so the woken bodies find their pairs with other sleepers);
 /// else drops the pairs with no awake dynamic body and returns false.
-[[nodiscard]] bool settle_sleeping_pairs(Registry& reg, ContactWorld& io);
+[[nodiscard]] bool settle_sleeping_pairs(const Parallel& par, Registry& reg, ContactWorld& io);
 /// After the step: sleep timers, islands, and the islands that fall asleep. Returns the bodies asleep.
 /// The per-body timers run on `par`'s threads, each body writing only its own.
 size_t update_sleep(const WorldDef& def, const Parallel& par, Registry& reg, ContactWorld& io,

@@ -136,7 +136,7 @@ void World::Impl::step()
     int substeps = def.substep_count;
     run(Stage::Broadphase, [&] {
         non_colliding_pairs(constraints, contact.excluded_pairs);
-        wake_jointed(constraints, reg, contact);
+        wake_jointed(constraints, parallel, reg, contact);
         substeps = update_pairs(def, parallel, reg, contact);
         profile.pair_count = contact.pairs.size();
     });
