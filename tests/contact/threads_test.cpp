@@ -286,6 +286,62 @@ TEST(Parallel, RoundRobinBlocksCoverEveryIndexOnce)
     }
 }
 
+// Items that cost unlike amounts in runs along the range (here the first fifth ten times the rest):
+// fed the parts' times, the split moves until the parts' times agree, stays contiguous and covering,
+// and keeps every part at least a quarter of an even one wide.
+TEST(Parallel, BalancedSplitEvensOutMeasuredTimes)
+{
+    auto cost = [](size_t i, size_t count) { return i < count / 5 ? 10.0 : 1.0; };
+    for (size_t parts : {2u, 3u, 8u}) {
+        sm::PartBalance balance;
+        const size_t count = 10000;
+        double spread = 0.0;
+        for (int run = 0; run < 60; ++run) {
+            const std::vector<size_t>& starts = balance.split(count, parts);
+            ASSERT_EQ(starts.size(), parts + 1);
+            EXPECT_EQ(starts.front(), 0u);
+            EXPECT_EQ(starts.back(), count);
+            double lo = HUGE_VAL, hi = 0.0;
+            for (size_t p = 0; p < parts; ++p) {
+                ASSERT_LE(starts[p], starts[p + 1]);
+                EXPECT_GE(starts[p + 1] - starts[p], count / (4 * parts) - 1)
+                    << parts << " parts, run " << run;
+                double t = 0.0;
+                for (size_t i = starts[p]; i < starts[p + 1]; ++i)
+                    t += cost(i, count);
+                balance.note(p, t * 1e-6);
+                lo = std::min(lo, t);
+                hi = std::max(hi, t);
+            }
+            EXPECT_EQ(balance.last_split(count, parts), starts.data());
+            EXPECT_EQ(balance.last_split(count + 1, parts), nullptr);
+            balance.learn();
+            spread = hi / lo;
+        }
+        // Even counts give two parts times of 4.6 : 1 (the first fifth costs 10 per item, the rest 1).
+        EXPECT_LT(spread, 1.02) << parts << " parts";
+    }
+}
+
+// The split a PartBalance chooses covers every index once and is what the loop's parts receive.
+TEST(Parallel, BalancedPartsCoverEveryIndexOnce)
+{
+    for (int threads : {1, 2, 3}) {
+        sm::ThreadPool pool(threads);
+        const sm::Parallel par(&pool);
+        sm::PartBalance balance;
+        for (size_t count : {0u, 7u, 1000u, 999u}) {
+            std::vector<std::atomic<int>> hits(count);
+            par.for_parts(count, 4, balance, [&](size_t, size_t begin, size_t end) {
+                for (size_t i = begin; i < end; ++i)
+                    ++hits[i];
+            });
+            for (size_t i = 0; i < count; ++i)
+                EXPECT_EQ(hits[i].load(), 1) << threads << " threads, index " << i;
+        }
+    }
+}
+
 TEST(ThreadPool, RunsEveryPartOnceEvenBeyondItsThreads)
 {
     for (int threads : {1, 2, 3}) {

@@ -541,16 +541,18 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
     // Each pair writes its own rows and only reads the bodies, so the pairs split across the threads
     // with the same bits on any count; the warm start pushes the bodies, so it runs by island with the
     // passes (warm_start_soft_pair).
-    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i)
-            make_pair_rows(reg, io, rows.pairs[i], ctx.h);
-    });
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.make_balance,
+                  [&](size_t, size_t begin, size_t end) {
+                      for (size_t i = begin; i < end; ++i)
+                          make_pair_rows(reg, io, rows.pairs[i], ctx.h);
+                  });
     scale_heavy_on_light(par, rows);
     rows.take_approach = true;
-    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i)
-            load_pair(def, reg, io, rows.pairs[i], ctx.h);
-    });
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.load_balance,
+                  [&](size_t, size_t begin, size_t end) {
+                      for (size_t i = begin; i < end; ++i)
+                          load_pair(def, reg, io, rows.pairs[i], ctx.h);
+                  });
 }
 
 void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io)
@@ -560,21 +562,22 @@ void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry
     io.max_penetration = 0.0;
     prepare_modal_substep(reg, ctx.h);
     rows.take_approach = false; // the approach stays the narrowphase substep's
-    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) {
-            SoftPair& sp = rows.pairs[k];
-            const BodyPair& pair = io.pairs[sp.pair];
-            sp.sliding = false;
-            sp.warm = true;
-            sp.roll_warm = sp.count > 0 && sp.rolling > 0.0;
-            note_pair_freedom(sp, rows);
-            for (uint32_t i = 0; i < sp.count; ++i) {
-                SoftPoint& p = rows.points[sp.first + i];
-                if (p.a.modal.active() || p.b.modal.active())
-                    remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
-            }
-        }
-    });
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.refresh_balance,
+                  [&](size_t, size_t begin, size_t end) {
+                      for (size_t k = begin; k < end; ++k) {
+                          SoftPair& sp = rows.pairs[k];
+                          const BodyPair& pair = io.pairs[sp.pair];
+                          sp.sliding = false;
+                          sp.warm = true;
+                          sp.roll_warm = sp.count > 0 && sp.rolling > 0.0;
+                          note_pair_freedom(sp, rows);
+                          for (uint32_t i = 0; i < sp.count; ++i) {
+                              SoftPoint& p = rows.points[sp.first + i];
+                              if (p.a.modal.active() || p.b.modal.active())
+                                  remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
+                          }
+                      }
+                  });
 }
 
 void warm_start_soft_pair(void* ctx, size_t i)
@@ -663,10 +666,11 @@ void advance_pair(SoftPair& sp, SoftContacts& io)
 void advance_soft_separations(const Parallel& par, SoftContacts& io)
 {
     // Each pair reads the bodies and writes its own rows: any threads, the same bits.
-    par.for_parts(io.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i)
-            advance_pair(io.pairs[i], io);
-    });
+    par.for_parts(io.pairs.size(), k_min_rows_per_part, io.advance_balance,
+                  [&](size_t, size_t begin, size_t end) {
+                      for (size_t i = begin; i < end; ++i)
+                          advance_pair(io.pairs[i], io);
+                  });
 }
 
 void restitute_soft_pair(void* rows, size_t pair)
@@ -708,24 +712,25 @@ void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWo
     // The pairs' sums on the threads (each writes its own slots), then the lists in pair order.
     anchors.resize(rows.pairs.size());
     rows.infos.resize(rows.pairs.size());
-    par.for_parts(rows.pairs.size(), k_min_rows_per_part, [&](size_t, size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const SoftPair& sp = rows.pairs[i];
-            const BodyPair& pair = io.pairs[sp.pair];
-            double normal = 0.0;
-            Vec3 friction{};
-            rows.infos[i] = pair_info(pair, sp, rows, normal, friction);
-            PairAnchor& anchor = anchors[i];
-            anchor = PairAnchor{.key = pair.key()};
-            anchor.normal_load = normal / ctx.h;
-            anchor.friction_load = friction / ctx.h;
-            anchor.roll_load = sp.roll_impulse / ctx.h;
-            anchor.spring = sp.stick;
-            // Each pair has its own slot of the step's touches.
-            if (is_contact(rows.infos[i], anchor.normal_load))
-                accumulate_touch(io.events, sp.pair, rows.infos[i], anchor.normal_load, ctx.h);
-        }
-    });
+    par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.finish_balance,
+                  [&](size_t, size_t begin, size_t end) {
+                      for (size_t i = begin; i < end; ++i) {
+                          const SoftPair& sp = rows.pairs[i];
+                          const BodyPair& pair = io.pairs[sp.pair];
+                          double normal = 0.0;
+                          Vec3 friction{};
+                          rows.infos[i] = pair_info(pair, sp, rows, normal, friction);
+                          PairAnchor& anchor = anchors[i];
+                          anchor = PairAnchor{.key = pair.key()};
+                          anchor.normal_load = normal / ctx.h;
+                          anchor.friction_load = friction / ctx.h;
+                          anchor.roll_load = sp.roll_impulse / ctx.h;
+                          anchor.spring = sp.stick;
+                          // Each pair has its own slot of the step's touches.
+                          if (is_contact(rows.infos[i], anchor.normal_load))
+                              accumulate_touch(io.events, sp.pair, rows.infos[i], anchor.normal_load, ctx.h);
+                      }
+                  });
     for (size_t i = 0; i < rows.pairs.size(); ++i) {
         const ContactInfo& info = rows.infos[i];
         if (!is_contact(info, anchors[i].normal_load))

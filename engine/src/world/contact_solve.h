@@ -99,6 +99,9 @@ struct SoftContacts {
     std::vector<Mat3> inv_inertia;     ///< Per entity index: a body's world I⁻¹ this substep (scratch).
     std::vector<RowTally> tally;       ///< Per part + 1, its pairs with rows and points (scratch).
     std::vector<ContactInfo> infos;    ///< Per pair, what world_contacts() reports (finish_soft_contacts).
+    /// Where the per-pair loops split across threads (scratch): a floor's pairs, first in key order,
+    /// cost less than a pile's, so even counts are uneven times.
+    PartBalance make_balance, load_balance, refresh_balance, advance_balance, finish_balance;
 };
 
 /// Rows from this substep's points with their last loads; the loads reach the bodies in the warm start

@@ -30,11 +30,11 @@ Aabb body_box(const BodyModel& m, const Pose& p)
 }
 
 // fn(part, begin, end) over [0, count) on the static partition (contact/penalty.h: per-pair slots).
-// One contiguous range per thread, the ranges of keep_manifolds' gather: a pair's manifold is then
-// written, gathered and read again next substep on one core. Blocks of 16 dealt round-robin balanced a
-// floor's pairs better (N = 250 pile: 4.95 against 5.2 ms per step on free cores), but on the
-// 4000-ellipsoid split pile the narrowphase took ~6% less against the solve with one range each
-// (six runs alternated), the manifolds no longer crossing between the cores.
+// The narrowphase's own loop splits where its measured times even out instead (collide_balance): a
+// floor's pairs, first in key order, cost a third of a pile's, and even counts left one thread 20% more
+// work on the 4000-ellipsoid pile. Its ranges stay contiguous and keep_manifolds' gather follows them,
+// so a pair's manifold is written, gathered and read again next substep on one core (blocks of 16
+// dealt round-robin moved the manifolds between the cores: ~6% slower against the solve).
 template <class Fn> void for_parts(const Parallel& par, size_t count, Fn&& fn)
 {
     par.for_parts(count, k_min_pairs_per_part, fn);
@@ -380,7 +380,8 @@ void keep_manifolds(const Parallel& par, ContactWorld& io)
             if (keeps_manifold(io.pair_manifold[pi]))
                 io.manifolds[out++] = io.pair_manifold[pi];
     };
-    par.gather(io.pairs.size(), k_min_pairs_per_part, io.manifold_tally, tally, size, fill);
+    par.gather(io.pairs.size(), k_min_pairs_per_part, io.manifold_tally, tally, size, fill,
+               &io.collide_balance);
 }
 
 } // namespace
@@ -411,16 +412,18 @@ void collide_pairs(const WorldDef& def, const Registry& reg, const Parallel& par
         }
     });
     std::vector<ManifoldCursor> cursors(par.part_capacity(), ManifoldCursor(&old_manifolds));
-    for_parts(par, io.pairs.size(), [&](size_t part, size_t begin, size_t end) {
-        std::vector<ContactPoint>& points = io.part_points[part];
-        ManifoldCursor& old = cursors[part];
-        for (size_t pi = begin; pi < end; ++pi) {
-            const auto first = static_cast<uint32_t>(points.size());
-            collide_pair(reg, io.boxes, io.pairs[pi], def.contact, old, io.pair_manifold[pi], points,
-                         io.pair_cost[pi]);
-            io.pair_points[pi] = {static_cast<uint32_t>(part), first, static_cast<uint32_t>(points.size())};
-        }
-    });
+    par.for_parts(io.pairs.size(), k_min_pairs_per_part, io.collide_balance,
+                  [&](size_t part, size_t begin, size_t end) {
+                      std::vector<ContactPoint>& points = io.part_points[part];
+                      ManifoldCursor& old = cursors[part];
+                      for (size_t pi = begin; pi < end; ++pi) {
+                          const auto first = static_cast<uint32_t>(points.size());
+                          collide_pair(reg, io.boxes, io.pairs[pi], def.contact, old, io.pair_manifold[pi],
+                                       points, io.pair_cost[pi]);
+                          io.pair_points[pi] = {static_cast<uint32_t>(part), first,
+                                                static_cast<uint32_t>(points.size())};
+                      }
+                  });
     keep_manifolds(par, io);
 }
 

@@ -88,6 +88,7 @@ struct ContactWorld {
     std::vector<BodyPair> pairs;                     ///< Derived: candidate pairs of this step, sorted.
     std::vector<PartList<ContactPoint>> part_points; ///< Derived: this substep's points, per part.
     std::vector<double> part_needed;     ///< Scratch: per part, the most substeps a pair of it needs [-].
+    PartBalance collide_balance;         ///< Scratch: where the narrowphase's pairs split across threads.
     std::vector<PairPoints> pair_points; ///< Derived: per pair, where its points are.
     std::vector<PairForce> pair_force;   ///< Scratch: per pair, this substep's forces.
     std::vector<ContactInfo> contacts;   ///< Derived: touching pairs of the last substep.
