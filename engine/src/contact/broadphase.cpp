@@ -223,20 +223,21 @@ void find_pairs(std::span<const BroadphaseProxy> proxies, const Parallel& par, B
                 std::vector<BodyPair>& out_pairs)
 {
     const std::span<const BroadphaseScratch::Entry> entries = io.entries;
-    // Each part takes its share of the cells and of the boxes the big ones are tested against, so its
-    // ranges come from `parts` itself (the same count for_parts splits `work` into).
+    // Each part takes the same share of the cells and of the boxes the big ones are tested against: its
+    // range of `work` scaled onto each (consecutive parts' ranges meet, so every cell and box is once
+    // in one part); the ranges even out the parts' measured times.
     const size_t work = entries.size() + proxies.size();
     const size_t parts = par.part_count(work, k_min_boxes_per_part);
     io.part_pairs.resize(std::max(io.part_pairs.size(), parts));
     io.part_other_pairs.resize(std::max(io.part_other_pairs.size(), parts));
-    par.for_parts(work, k_min_boxes_per_part, [&](size_t part, size_t, size_t) {
+    auto scaled = [work](size_t at, size_t n) { return at * n / work; };
+    par.for_parts(work, k_min_boxes_per_part, io.pairs_balance, [&](size_t part, size_t begin, size_t end) {
         std::vector<BodyPair>& pairs = io.part_pairs[part];
         pairs.clear();
-        pairs_in_range(proxies, io.low_cells, entries, Parallel::part_begin(entries.size(), parts, part),
-                       Parallel::part_begin(entries.size(), parts, part + 1), pairs);
+        pairs_in_range(proxies, io.low_cells, entries, scaled(begin, entries.size()),
+                       scaled(end, entries.size()), pairs);
         if (!io.big.empty())
-            pairs_of_big(proxies, io.big, Parallel::part_begin(proxies.size(), parts, part),
-                         Parallel::part_begin(proxies.size(), parts, part + 1), pairs);
+            pairs_of_big(proxies, io.big, scaled(begin, proxies.size()), scaled(end, proxies.size()), pairs);
         radix_sort(pairs, io.part_other_pairs[part], pair_key);
     });
     merge_parts(io.part_pairs, parts, out_pairs, io.sorted_pairs, pair_key);

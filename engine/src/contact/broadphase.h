@@ -62,6 +62,7 @@ struct BroadphaseScratch {
     std::vector<PartList<uint32_t>> part_big;         ///< Per thread part: its boxes too big to bin.
     std::vector<PartList<BodyPair>> part_pairs;       ///< Per thread part: its cells' and big boxes' pairs.
     std::vector<PartList<BodyPair>> part_other_pairs; ///< Per thread part: its sort's other buffer.
+    PartBalance pairs_balance; ///< Where find_pairs' parts split (a pile's cells are denser low down).
 };
 
 /// All pairs whose boxes overlap (touching counts), except static–static, sorted by key(); the boxes
