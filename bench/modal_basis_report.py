@@ -22,7 +22,7 @@ import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
+from report_files import gnuplot, have_gnuplot, read_rows, write_blocks, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "cells", "dofs", "seconds", "cpu_seconds",
           "assembly_s", "eigen_s", "peak_mb", "rounds", "checked", "f1_hz", "f12_hz"]
@@ -81,18 +81,7 @@ def plot(out_csv, lines):
     """CPU seconds and peak MB against dofs, one line per build (gnuplot, if installed)."""
     if not have_gnuplot():
         return
-    builds = []
-    for r in lines:
-        if r[4] not in builds:
-            builds.append(r[4])
-    data = out_csv[:-4] + ".dat"
-    with open(data, "w", encoding="utf-8") as f:
-        for b in builds:
-            f.write(f"# {b}\n")
-            for r in lines:
-                if r[4] == b:
-                    f.write(f"{r[6]} {r[8]} {r[11]}\n")
-            f.write("\n\n")
+    data, builds = write_blocks(out_csv, lines, 4, (6, 8, 11))
     png = out_csv[:-4] + ".png"
     first, last = min(r[0] for r in lines), max(r[0] for r in lines)
     dates = first if first == last else f"{first} to {last}"

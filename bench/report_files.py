@@ -4,6 +4,7 @@ import csv
 import os
 import shutil
 import subprocess
+import sys
 
 
 def write_rows(path, header, lines):
@@ -20,6 +21,22 @@ def read_rows(path):
         return list(csv.reader(f))[1:]
 
 
+def write_blocks(out_csv, lines, group, columns, heading="# {}"):
+    """gnuplot data beside `out_csv` (its name, .dat): one block per value of column `group`, in the order
+    the values first appear, each holding those rows' `columns`, under `heading` with the value.
+    Returns the data file's path and the values."""
+    groups = list(dict.fromkeys(r[group] for r in lines))
+    data = out_csv[:-4] + ".dat"
+    with open(data, "w", encoding="utf-8") as f:
+        for g in groups:
+            f.write(heading.format(g) + "\n")
+            for r in lines:
+                if r[group] == g:
+                    f.write(" ".join(str(r[c]) for c in columns) + "\n")
+            f.write("\n\n")
+    return data, groups
+
+
 def have_gnuplot():
     """Whether gnuplot is installed; says so when not (the reports then write no plot)."""
     if shutil.which("gnuplot"):
@@ -33,3 +50,12 @@ def gnuplot(script, data, png):
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
     os.remove(data)
     print(png)
+
+
+def main_or_replot(main, plot):
+    """`SCRIPT --plot OUT.csv` draws the plot again from the CSV (plot(path, rows)); anything else runs
+    the report (main())."""
+    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
+        plot(sys.argv[2], read_rows(sys.argv[2]))
+    else:
+        main()

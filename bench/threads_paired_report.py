@@ -21,7 +21,7 @@ import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
+from report_files import gnuplot, have_gnuplot, main_or_replot, write_blocks, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "round", "scene", "bodies", "ms_one_thread",
           "ms_two_threads", "speedup", "copies", "same_hash"]
@@ -35,8 +35,10 @@ def run(binary, scene):
     for r in csv.DictReader(io.StringIO(out[out.index("name,"):])):
         if r["name"].endswith(("_mean", "_median", "_stddev", "_cv")):
             continue
+        if r.get("error_occurred") == "true":
+            sys.exit(f"{binary}: {r['error_message']}")
         rows.append((int(float(r["bodies"])), float(r["ms_one_thread"]), float(r["ms_per_step"]),
-                     float(r["speedup"]), float(r["copies_ceiling"]), int(float(r["same_hash"]))))
+                     float(r["speedup"]), float(r["copies_speedup"]), int(float(r["same_hash"]))))
     return rows
 
 
@@ -69,15 +71,7 @@ def plot(out_csv, lines):
               f"max {max(ups):.3f})")
     if not have_gnuplot():
         return
-    data = out_csv[:-4] + ".dat"
-    builds = list(dict.fromkeys(r[4] for r in lines))
-    with open(data, "w", encoding="utf-8") as f:
-        for build in builds:
-            f.write(f'"{build}"\n')
-            for r in lines:
-                if r[4] == build:
-                    f.write(f"{r[11]} {r[10]}\n")
-            f.write("\n\n")
+    data, builds = write_blocks(out_csv, lines, 4, (11, 10), heading='"{}"')
     png = out_csv[:-4] + ".png"
     series = ", ".join(f'"{data}" index {i} using 1:2 with points pt 7 ps 1.2 title columnheader(1)'
                        for i in range(len(builds)))
@@ -97,7 +91,4 @@ plot {series}, 1.8 with lines dt 2 lc rgb "#888888" title "1.8"
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
-        plot(sys.argv[2], read_rows(sys.argv[2]))
-    else:
-        main()
+    main_or_replot(main, plot)

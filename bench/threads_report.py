@@ -18,7 +18,7 @@ import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, read_rows, write_rows  # bench/report_files.py
+from report_files import gnuplot, have_gnuplot, main_or_replot, write_rows  # bench/report_files.py
 
 
 def run(binary, scenes):
@@ -94,7 +94,4 @@ plot "{data}" using 2:xtic(1) lc rgb "#3d7cc9", 1 with lines dt 2 lc rgb "#88888
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--plot":
-        plot(sys.argv[2], read_rows(sys.argv[2]))
-    else:
-        main()
+    main_or_replot(main, plot)
