@@ -44,7 +44,8 @@ void PartBalance::learn()
         return;
     // The cumulative time along the old split is piecewise linear; each new bound is where it reaches
     // that bound's share of the total.
-    std::vector<double> target(parts + 1);
+    std::vector<double>& target = m_target;
+    target.resize(parts + 1);
     target[0] = 0.0;
     target[parts] = 1.0;
     size_t seg = 0;

@@ -56,6 +56,7 @@ class PartBalance
     std::vector<double> m_bounds; ///< parts + 1 fractions of the count where parts start [-].
     std::vector<Slot> m_seconds;  ///< Per part, its last time [s].
     std::vector<size_t> m_starts; ///< The last split's starts.
+    std::vector<double> m_target; ///< learn()'s scratch: the bounds of equal times [-].
 };
 
 class Parallel

@@ -555,6 +555,28 @@ void prepare_soft_contacts(const ContactDef& def, const StepContext& ctx, const 
                   });
 }
 
+namespace
+{
+
+// Soft pair k's rows for another solver substep on the same points (refresh_soft_contacts).
+void refresh_pair(Registry& reg, ContactWorld& io, size_t k, double h)
+{
+    SoftContacts& rows = io.soft;
+    SoftPair& sp = rows.pairs[k];
+    const BodyPair& pair = io.pairs[sp.pair];
+    sp.sliding = false;
+    sp.warm = true;
+    sp.roll_warm = sp.count > 0 && sp.rolling > 0.0;
+    note_pair_freedom(sp, rows);
+    for (uint32_t i = 0; i < sp.count; ++i) {
+        SoftPoint& p = rows.points[sp.first + i];
+        if (p.a.modal.active() || p.b.modal.active())
+            remake_sides(reg, pair, p, h); // the modes' drift is this substep's
+    }
+}
+
+} // namespace
+
 void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     SoftContacts& rows = io.soft;
@@ -564,19 +586,8 @@ void refresh_soft_contacts(const StepContext& ctx, const Parallel& par, Registry
     rows.take_approach = false; // the approach stays the narrowphase substep's
     par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.refresh_balance,
                   [&](size_t, size_t begin, size_t end) {
-                      for (size_t k = begin; k < end; ++k) {
-                          SoftPair& sp = rows.pairs[k];
-                          const BodyPair& pair = io.pairs[sp.pair];
-                          sp.sliding = false;
-                          sp.warm = true;
-                          sp.roll_warm = sp.count > 0 && sp.rolling > 0.0;
-                          note_pair_freedom(sp, rows);
-                          for (uint32_t i = 0; i < sp.count; ++i) {
-                              SoftPoint& p = rows.points[sp.first + i];
-                              if (p.a.modal.active() || p.b.modal.active())
-                                  remake_sides(reg, pair, p, ctx.h); // the modes' drift is this substep's
-                          }
-                      }
+                      for (size_t k = begin; k < end; ++k)
+                          refresh_pair(reg, io, k, ctx.h);
                   });
 }
 
@@ -703,6 +714,27 @@ bool is_contact(const ContactInfo& info, double normal_force)
     return info.depth > 0.0 || normal_force != 0.0;
 }
 
+// Soft pair i's report, anchor and touch from its impulses over the substep h [s] (its own slots).
+void finish_pair(ContactWorld& io, size_t i, double h)
+{
+    const SoftContacts& rows = io.soft;
+    const SoftPair& sp = rows.pairs[i];
+    const BodyPair& pair = io.pairs[sp.pair];
+    double normal = 0.0;
+    Vec3 friction{};
+    ContactInfo& info = io.soft.infos[i];
+    info = pair_info(pair, sp, rows, normal, friction);
+    PairAnchor& anchor = io.next_anchors[i];
+    anchor = PairAnchor{.key = pair.key()};
+    anchor.normal_load = normal / h;
+    anchor.friction_load = friction / h;
+    anchor.roll_load = sp.roll_impulse / h;
+    anchor.spring = sp.stick;
+    // Each pair has its own slot of the step's touches.
+    if (is_contact(info, anchor.normal_load))
+        accumulate_touch(io.events, sp.pair, info, anchor.normal_load, h);
+}
+
 } // namespace
 
 void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io)
@@ -714,22 +746,8 @@ void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWo
     rows.infos.resize(rows.pairs.size());
     par.for_parts(rows.pairs.size(), k_min_rows_per_part, rows.finish_balance,
                   [&](size_t, size_t begin, size_t end) {
-                      for (size_t i = begin; i < end; ++i) {
-                          const SoftPair& sp = rows.pairs[i];
-                          const BodyPair& pair = io.pairs[sp.pair];
-                          double normal = 0.0;
-                          Vec3 friction{};
-                          rows.infos[i] = pair_info(pair, sp, rows, normal, friction);
-                          PairAnchor& anchor = anchors[i];
-                          anchor = PairAnchor{.key = pair.key()};
-                          anchor.normal_load = normal / ctx.h;
-                          anchor.friction_load = friction / ctx.h;
-                          anchor.roll_load = sp.roll_impulse / ctx.h;
-                          anchor.spring = sp.stick;
-                          // Each pair has its own slot of the step's touches.
-                          if (is_contact(rows.infos[i], anchor.normal_load))
-                              accumulate_touch(io.events, sp.pair, rows.infos[i], anchor.normal_load, ctx.h);
-                      }
+                      for (size_t i = begin; i < end; ++i)
+                          finish_pair(io, i, ctx.h);
                   });
     for (size_t i = 0; i < rows.pairs.size(); ++i) {
         const ContactInfo& info = rows.infos[i];
