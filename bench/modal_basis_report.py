@@ -13,26 +13,22 @@ Usage: bench/modal_basis_report.py OUT.csv [--cells 4,6,8,10,12] [--repeat N] LA
        bench/modal_basis_report.py --plot OUT.csv [LABEL ...]   (the plot again from the CSV: all
        builds, or those named)
 """
-import csv
 import datetime
-import io
 import os
 import platform
 import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, read_rows, write_blocks, write_rows  # bench/report_files.py
+from report_files import benchmark_rows, gnuplot, have_gnuplot, read_rows, write_blocks, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "cells", "dofs", "seconds", "cpu_seconds",
           "assembly_s", "eigen_s", "peak_mb", "rounds", "checked", "f1_hz", "f12_hz"]
 
 
 def run(binary, cells):
-    out = subprocess.run([binary, f"--benchmark_filter=BM_ModalBasis_Cube/{cells}/", "--benchmark_format=csv"],
-                         check=True, capture_output=True, text=True).stdout
-    rows = list(csv.DictReader(io.StringIO(out[out.index("name,"):])))
-    if len(rows) != 1 or rows[0].get("error_occurred") == "true":
+    rows = benchmark_rows(binary, [f"--benchmark_filter=BM_ModalBasis_Cube/{cells}/"])
+    if len(rows) != 1:
         raise SystemExit(f"{binary}: no result for {cells} cells: {rows}")
     return rows[0]
 

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The CSV and gnuplot plumbing the bench reports share."""
 import csv
+import io
 import os
 import shutil
 import subprocess
@@ -19,6 +20,18 @@ def read_rows(path):
     """A CSV's rows after its header, each a list of strings."""
     with open(path, encoding="utf-8") as f:
         return list(csv.reader(f))[1:]
+
+
+def benchmark_rows(binary, args):
+    """Runs a Google Benchmark program with --benchmark_format=csv and `args`; its rows as dicts. Stops
+    the report with the program's message if a benchmark failed (a scene that did not load)."""
+    out = subprocess.run([binary, "--benchmark_format=csv"] + args, check=True, capture_output=True,
+                         text=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out[out.index("name,"):])))
+    for r in rows:
+        if r.get("error_occurred") == "true":
+            sys.exit(f"{binary}: {r['name']}: {r['error_message']}")
+    return rows
 
 
 def write_blocks(out_csv, lines, group, columns, heading="# {}"):

@@ -11,9 +11,7 @@ Usage: bench/threads_paired_report.py OUT.csv ROUNDS LABEL[:COMMIT]=BINARY [...]
        bench/threads_paired_report.py --plot OUT.csv   (the plot again from the CSV)
 (COMMIT: the commit the binary was built from; default the checkout's HEAD).
 """
-import csv
 import datetime
-import io
 import os
 import platform
 import statistics
@@ -21,7 +19,7 @@ import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, main_or_replot, write_blocks, write_rows  # bench/report_files.py
+from report_files import benchmark_rows, gnuplot, have_gnuplot, main_or_replot, write_blocks, write_rows  # bench/report_files.py
 
 HEADER = ["date", "machine", "cpu", "commit", "build", "round", "scene", "bodies", "ms_one_thread",
           "ms_two_threads", "speedup", "copies", "same_hash"]
@@ -29,14 +27,10 @@ HEADER = ["date", "machine", "cpu", "commit", "build", "round", "scene", "bodies
 
 def run(binary, scene):
     """The repetitions of BM_Paired on one scene: (bodies, ms one thread, ms two, speed-up, copies, same)."""
-    out = subprocess.run([binary, "--benchmark_filter=BM_Paired", "--benchmark_format=csv", scene],
-                         check=True, capture_output=True, text=True).stdout
     rows = []
-    for r in csv.DictReader(io.StringIO(out[out.index("name,"):])):
+    for r in benchmark_rows(binary, ["--benchmark_filter=BM_Paired", scene]):
         if r["name"].endswith(("_mean", "_median", "_stddev", "_cv")):
             continue
-        if r.get("error_occurred") == "true":
-            sys.exit(f"{binary}: {r['error_message']}")
         rows.append((int(float(r["bodies"])), float(r["ms_one_thread"]), float(r["ms_per_step"]),
                      float(r["speedup"]), float(r["copies_speedup"]), int(float(r["same_hash"]))))
     return rows

@@ -9,24 +9,19 @@ and the low 32 bits of the state hash (equal for 1 and 2 threads: a determinism 
 Usage: bench/threads_report.py OUT.csv LABEL[:COMMIT]=BINARY [...] -- SCENE.json [SCENE.json ...]
 (COMMIT: the commit the binary was built from; default the checkout's HEAD).
 """
-import csv
 import datetime
-import io
 import os
 import platform
 import subprocess
 import sys
 
 from machine import cpu_name  # bench/machine.py
-from report_files import gnuplot, have_gnuplot, main_or_replot, write_rows  # bench/report_files.py
+from report_files import benchmark_rows, gnuplot, have_gnuplot, main_or_replot, write_rows  # bench/report_files.py
 
 
 def run(binary, scenes):
-    out = subprocess.run([binary, "--benchmark_format=csv", "--benchmark_report_aggregates_only=true"] +
-                         scenes, check=True, capture_output=True, text=True).stdout
-    start = out.index("name,")
     rows = {}
-    for r in csv.DictReader(io.StringIO(out[start:])):
+    for r in benchmark_rows(binary, ["--benchmark_filter=BM_Threads", "--benchmark_report_aggregates_only=true"] + scenes):
         if not r["name"].endswith("_median"):
             continue
         base = r["name"][: -len("_median")]  # BM_Threads/scene.json/1/iterations:1/repeats:3/manual_time
