@@ -88,12 +88,8 @@ class Parallel
     template <class Fn> void for_parts(size_t count, size_t min_chunk, Fn&& fn, size_t block = 0) const
     {
         const size_t parts = part_count(count, min_chunk);
-        if (parts <= 1 || m_tasks == nullptr) {
-            if (count > 0)
-                fn(size_t{0}, size_t{0}, count);
-            return;
-        }
-        run(count, parts, block, nullptr, fn);
+        if (!on_this_thread(count, parts, fn))
+            run(count, parts, block, nullptr, fn);
     }
 
     /// Calls fn(part, begin, end) once per part over contiguous ranges that `balance` chose and then
@@ -101,11 +97,8 @@ class Parallel
     template <class Fn> void for_parts(size_t count, size_t min_chunk, PartBalance& balance, Fn&& fn) const
     {
         const size_t parts = part_count(count, min_chunk);
-        if (parts <= 1 || m_tasks == nullptr) {
-            if (count > 0)
-                fn(size_t{0}, size_t{0}, count);
+        if (on_this_thread(count, parts, fn))
             return;
-        }
         const std::vector<size_t>& starts = balance.split(count, parts);
         auto timed = [&](size_t part, size_t begin, size_t end) {
             const auto start = std::chrono::steady_clock::now();
@@ -130,10 +123,8 @@ class Parallel
         const size_t parts = part_count(count, min_chunk);
         const size_t* starts = follow != nullptr ? follow->last_split(count, parts) : nullptr;
         auto each_part = [&](auto&& fn) {
-            if (parts > 1 && m_tasks != nullptr)
+            if (!on_this_thread(count, parts, fn))
                 run(count, parts, 0, starts, fn);
-            else if (count > 0)
-                fn(size_t{0}, size_t{0}, count);
         };
         io_starts.assign(parts + 1, T{});
         each_part([&](size_t part, size_t begin, size_t end) { io_starts[part + 1] = tally(begin, end); });
@@ -146,6 +137,17 @@ class Parallel
     }
 
   private:
+    // With one part or no task system: fn(0, 0, count) on the calling thread (nothing for no items) and
+    // true; else false.
+    template <class Fn> bool on_this_thread(size_t count, size_t parts, Fn& fn) const
+    {
+        if (parts > 1 && m_tasks != nullptr)
+            return false;
+        if (count > 0)
+            fn(size_t{0}, size_t{0}, count);
+        return true;
+    }
+
     // fn(part, begin, end) on `parts` > 1 parts of [0, count) through the task system: the even split,
     // its blocks, or the ranges at `starts` (parts + 1 of them).
     template <class Fn> void run(size_t count, size_t parts, size_t block, const size_t* starts, Fn& fn) const
