@@ -293,6 +293,7 @@ class World:
         max_plastic_strain: float = ...,
         adaptive_tolerance: float = 0.0,
         remould_threshold: float = 0.02,
+        static_correction: bool = False,
     ) -> Body: ...
     def destroy_body(self, body: Body) -> None: ...
     @property

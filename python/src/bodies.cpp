@@ -129,6 +129,7 @@ void read_modal(Kwargs& kw, sm::ModalBodyDef& m)
     m.max_plastic_strain = kw.number_or_inf("max_plastic_strain", m.max_plastic_strain);
     m.adaptive_tolerance = kw.number("adaptive_tolerance", m.adaptive_tolerance);
     m.remould_threshold = kw.number("remould_threshold", m.remould_threshold);
+    m.static_correction = kw.flag("static_correction", m.static_correction);
 }
 
 sm::BodyDef read_body_def(const py::kwargs& kwargs)
@@ -391,7 +392,8 @@ modal [False]: deform through the lowest modes; mode_count [12] in [1, 256] (0: 
 lattice [(0, 0, 0)] cells per axis in [0, 128] (0: from the aspect ratio);
 modal_integrator ['exact'|'central_difference']; damping_ratio [0.01] >= 0; yield_stress [inf] Pa;
 hardening [0] Pa; max_plastic_strain [inf]; adaptive_tolerance [0] m (> 0: adaptive modes);
-remould_threshold [0.02] >= 0 (rest-shape change past which the modes are rebuilt; 0: never).
+remould_threshold [0.02] >= 0 (rest-shape change past which the modes are rebuilt; 0: never);
+static_correction [False]: add the static answer of the modes left out to the surface (mode acceleration).
 
 Raises ArgumentError / ArgumentTypeError naming the keyword; the world is then unchanged.)");
     world.def("destroy_body", &destroy_body, py::arg("body"), "Destroys a body; its handles become invalid.");

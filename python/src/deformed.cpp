@@ -68,15 +68,19 @@ void update(DeformedPoints& d)
     const sm::Vec3 centre = sm::body_center_of_mass(w, e);
     const sm::Quat orientation = sm::body_orientation(w, e);
     const sm::Vec3 com = sm::body_mass_properties(w, e).center_of_mass;
-    std::vector<sm::Vec3> moulded; // a remoulded body's rest offsets, added as body_deformed_point does
+    // A remoulded body's rest offsets and the static correction, added as body_deformed_point does.
+    std::vector<sm::Vec3> moulded, correction;
     if (d.basis != nullptr) {
         sm::modal_nodal_displacements(*d.basis, sm::body_modal_state(w, e).amplitudes, d.nodal);
         moulded = sm::body_remould(w, e).rest_offsets;
+        correction = sm::body_static_correction(w, e);
     }
     for (size_t i = 0; i < d.rest.size(); ++i) {
         sm::Vec3 local = d.rest[i] - com;
         if (d.basis != nullptr)
             local += sm::interpolate_nodal(d.weights[i], d.nodal);
+        if (!correction.empty())
+            local += sm::interpolate_nodal(d.weights[i], correction);
         if (!moulded.empty())
             local += sm::interpolate_nodal(d.weights[i], moulded);
         d.positions[i] = centre + sm::rotate(orientation, local);

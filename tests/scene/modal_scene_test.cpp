@@ -125,6 +125,8 @@ TEST(SceneModal, ErrorsNameThePointer)
                          "/bodies/0/dynamics/integrator", "\"exact\""));
     EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "damping_ratio": -0.1})"),
                          "/bodies/0/dynamics/damping_ratio", "expected a number >= 0"));
+    EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal", "static_correction": 1})"),
+                         "/bodies/0/dynamics/static_correction", "expected true or false"));
     EXPECT_TRUE(
         fails_at(board_scene(R"({"type": "modal", "mode": 3})"), "/bodies/0/dynamics/mode", "\"modes\""));
     EXPECT_TRUE(fails_at(board_scene(R"({"type": "modal"})", R"("motion": "kinematic", )"),

@@ -88,6 +88,7 @@ void compare_body(Diff& d, const sm::SceneBody& a, const sm::SceneBody& b, const
     d.check(x.modal.lattice == y.modal.lattice, w + ".modal.lattice");
     d.check(x.modal.integrator == y.modal.integrator, w + ".modal.integrator");
     d.num(x.modal.damping_ratio, y.modal.damping_ratio, w + ".modal.damping_ratio");
+    d.check(x.modal.static_correction == y.modal.static_correction, w + ".modal.static_correction");
     d.num(x.young, y.young, w + ".young");
     d.num(x.poisson, y.poisson, w + ".poisson");
     d.check(a.material == b.material, w + ".material");
@@ -265,7 +266,7 @@ std::string every_field_scene()
       "position": [1, 0.5, 0.1], "orientation": [0.3, -0.4, 0.5, 0.6], "velocity": [0.1, 0.2, -0.3],
       "angular_velocity": [1, -2, 3], "gravity_scale": 0.5, "sleep": false,
       "dynamics": { "type": "modal", "modes": 5, "lattice": [2, 2, 4], "integrator": "central_difference",
-                    "damping_ratio": 0.03 } },
+                    "damping_ratio": 0.03, "static_correction": true } },
     { "name": "gem", "mass": 2.5, "parent": "blob",
       "shape": { "type": "hyperquadric", "terms": [
         { "normal": [8, 0, 0], "exponent": 6 }, { "normal": [0, 8, 0], "offset": 0.1, "exponent": 6 },

@@ -201,6 +201,7 @@ CellResult run_cell(const CellDef& def)
         body.modal.enabled = true;
         body.modal.mode_count = 8;
         body.modal.integrator = def.exact_modal ? ModalIntegrator::Exact : ModalIntegrator::CentralDifference;
+        body.modal.static_correction = def.static_correction;
         body.young = 2e6;
         if (refuse(out, validate(body)))
             return out;

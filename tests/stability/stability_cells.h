@@ -34,15 +34,16 @@ enum class Scene : uint8_t {
 
 struct CellDef {
     Scene scene = Scene::Drop;
-    double epsilon = 1.0;      ///< Both superquadric exponents [-].
-    double aspect = 1.0;       ///< Largest over smallest radius [-].
-    double mass_ratio = 1.0;   ///< Top body over bottom body mass [-] (Stack).
-    double dt_ratio = 1.0;     ///< Step over its stability limit [-] (Stack, ModalDrop).
-    double frequency_hz = 0.0; ///< Penalty frequency [Hz], 0 = the cap 1/(10 h) (Impact).
-    double speed = 0.0;        ///< Initial downward speed [m/s] (Impact).
-    double seconds = 1.0;      ///< Simulated time after the scene is set up [s].
-    double restitution = 0.5;  ///< Of every body [-].
-    bool exact_modal = false;  ///< ModalDrop: the exact integrator instead of central difference.
+    double epsilon = 1.0;           ///< Both superquadric exponents [-].
+    double aspect = 1.0;            ///< Largest over smallest radius [-].
+    double mass_ratio = 1.0;        ///< Top body over bottom body mass [-] (Stack).
+    double dt_ratio = 1.0;          ///< Step over its stability limit [-] (Stack, ModalDrop).
+    double frequency_hz = 0.0;      ///< Penalty frequency [Hz], 0 = the cap 1/(10 h) (Impact).
+    double speed = 0.0;             ///< Initial downward speed [m/s] (Impact).
+    double seconds = 1.0;           ///< Simulated time after the scene is set up [s].
+    double restitution = 0.5;       ///< Of every body [-].
+    bool exact_modal = false;       ///< ModalDrop: the exact integrator instead of central difference.
+    bool static_correction = false; ///< ModalDrop: ModalBodyDef::static_correction (mode acceleration).
     ContactSolver solver = ContactSolver::Penalty; ///< Soft: frequency_hz sets the soft spring instead.
     std::FILE* trace = nullptr; ///< If set, one CSV line per step: time, gain, modal energy / E_ref,
                                 ///< contacts, penetration (for looking into one cell).

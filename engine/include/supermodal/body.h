@@ -66,6 +66,11 @@ struct ModalBodyDef {
     /// own meanwhile) to the step boundary where the new modes take over; that step waits for the
     /// build if it is not done, so results do not depend on how long it takes.
     int remould_delay_steps = 4;
+    /// Mode acceleration (docs/modal.md "Static correction in the world"): after each substep the full
+    /// lattice's static response to that substep's contact and host loads, less what the kept modes
+    /// carry, is added to the body's surface, so a point load dents it locally as the full lattice
+    /// would. Costs one sparse solve of the lattice per loaded substep and a factorisation at creation.
+    bool static_correction = false;
 };
 
 /// How to make a body. Start from default_body_def() and change what differs.

@@ -331,8 +331,13 @@ struct BodyRemould {
 };
 [[nodiscard]] SM_API BodyRemould body_remould(const World& world, Entity body);
 
+/// Per lattice node, the displacement the static correction adds to the modes' (ModalBodyDef::
+/// static_correction) [m], body frame, node order of ModalBasis::node_positions; empty when it is off.
+[[nodiscard]] SM_API std::vector<Vec3> body_static_correction(const World& world, Entity body);
+
 /// Where the material point with rest position `point_shape` [m] (shape frame, as BodyDef::shape)
-/// is now [m], world frame: the rigid pose plus the modal displacement (for rigid bodies, just the pose).
+/// is now [m], world frame: the rigid pose plus the modal displacement and its static correction (for
+/// rigid bodies, just the pose).
 [[nodiscard]] SM_API Vec3 body_deformed_point(const World& world, Entity body, const Vec3& point_shape);
 
 } // namespace supermodal

@@ -30,6 +30,30 @@ double inverse_mass_norm(const AccuracyModel& m, const Eigen::VectorXd& x)
     return std::sqrt(std::max(x.dot(a), 0.0));
 }
 
+/// K⁺ F_e: the full lattice's static response to the elastic part of F (F_e = F − M Ψ Ψᵀ F, inertia
+/// relief), solved with six pinned dofs, the rigid motion the pins chose dropped.
+Eigen::VectorXd static_response(const AccuracyModel& m, const Eigen::VectorXd& f)
+{
+    Eigen::VectorXd rhs = f - m.mass * (m.rigid * (m.rigid.transpose() * f));
+    for (const int p : m.pinned)
+        rhs[p] = 0.0;
+    Eigen::VectorXd full = m.pinned_solver.solve(rhs);
+    full -= m.rigid * (m.rigid.transpose() * (m.mass * full));
+    return full;
+}
+
+/// Ω⁻² Φᵀ F over the first `shown` modes (the rest zero): the kept modes' static amplitudes [√kg·m].
+Eigen::VectorXd kept_static(const Eigen::Map<const RowMajor>& phi, const Eigen::VectorXd& f,
+                            std::span<const double> omega, size_t shown)
+{
+    Eigen::VectorXd q = phi.transpose() * f;
+    for (Eigen::Index k = 0; k < q.size(); ++k) {
+        const double w2 = omega[static_cast<size_t>(k)] * omega[static_cast<size_t>(k)];
+        q[k] = static_cast<size_t>(k) < shown && w2 > 0.0 ? q[k] / w2 : 0.0;
+    }
+    return q;
+}
+
 } // namespace
 
 Result<std::unique_ptr<AccuracyModel>> build_accuracy_model(const ModalBasisDef& def, const ModalBasis& basis)
@@ -122,19 +146,34 @@ ModalAccuracy evaluate_accuracy(const AccuracyModel& m, const ModalBasis& basis,
 
     // Static response of the full lattice to the elastic part of F (inertia relief) against the part of
     // it the kept modes carry, Φ Ω⁻² Φᵀ F; the difference is what the dropped modes would carry.
-    const Eigen::VectorXd relieved = f - m.mass * (m.rigid * rigid_load);
-    Eigen::VectorXd rhs = relieved;
-    for (const int p : m.pinned)
-        rhs[p] = 0.0;
-    Eigen::VectorXd full = m.pinned_solver.solve(rhs);
-    full -= m.rigid * (m.rigid.transpose() * (m.mass * full)); // drop the rigid part the pins chose
-    Eigen::VectorXd kept_load = phi.transpose() * f;
-    for (int k = 0; k < r; ++k)
-        kept_load[k] = omega2[k] > 0.0 ? kept_load[k] / omega2[k] : 0.0;
-    const Eigen::VectorXd difference = full - phi * kept_load;
+    const Eigen::VectorXd full = static_response(m, f);
+    const Eigen::VectorXd difference = full - phi * kept_static(phi, f, in.omega, static_cast<size_t>(r));
     out.static_energy = 0.5 * full.dot(m.stiffness * full);
     out.truncated_energy = 0.5 * difference.dot(m.stiffness * difference);
     out.truncated_fraction = out.static_energy > 0.0 ? out.truncated_energy / out.static_energy : 0.0;
+    return out;
+}
+
+void static_correction(const AccuracyModel& m, const ModalBasis& basis, std::span<const double> nodal_force,
+                       std::span<const double> omega, size_t shown, std::span<double> out)
+{
+    const Eigen::Index n = m.stiffness.rows();
+    if (static_cast<Eigen::Index>(nodal_force.size()) != n || static_cast<Eigen::Index>(out.size()) != n ||
+        omega.size() != static_cast<size_t>(basis.mode_count))
+        return;
+    const auto phi = modes_of(basis);
+    const Eigen::VectorXd f = vec(nodal_force);
+    Eigen::Map<Eigen::VectorXd>(out.data(), n) =
+        static_response(m, f) - phi * kept_static(phi, f, omega, shown);
+}
+
+Vec3 interpolate_flat(const LatticeWeights& weights, std::span<const double> nodal)
+{
+    Vec3 out{};
+    for (int j = 0; j < weights.count; ++j) {
+        const double* x = &nodal[static_cast<size_t>(weights.nodes[j]) * 3];
+        out += weights.weights[j] * Vec3{x[0], x[1], x[2]};
+    }
     return out;
 }
 

@@ -57,4 +57,16 @@ struct AccuracyInput {
 [[nodiscard]] ModalAccuracy evaluate_accuracy(const AccuracyModel& model, const ModalBasis& basis,
                                               const AccuracyInput& in);
 
+/// The static correction (mode acceleration) of nodal loads F (3n) [N], body frame: the full lattice's
+/// static response to F's elastic part (inertia relief: F − M Ψ Ψᵀ F, with no rigid motion) minus the part
+/// the first `shown` modes carry, Φ Ω⁻² Φᵀ F. What the dropped modes would do if they answered F at once:
+/// it adds to the modal displacement, nodal, into `out` (3n) [m]. Costs one solve with the pinned K.
+void static_correction(const AccuracyModel& model, const ModalBasis& basis,
+                       std::span<const double> nodal_force, std::span<const double> omega, size_t shown,
+                       std::span<double> out);
+
+/// A nodal field stored flat (3 × nodes: x, y, z per node), e.g. a static correction, at a point with
+/// precomputed weights.
+[[nodiscard]] Vec3 interpolate_flat(const LatticeWeights& weights, std::span<const double> nodal);
+
 } // namespace supermodal::modal

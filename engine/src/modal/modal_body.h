@@ -25,12 +25,21 @@ namespace modal
 struct AccuracyCache;
 }
 
+/// How long the static correction of contact loads takes to follow them [s]: the part of its answer it
+/// takes per substep h is 1 − e^(−h/τ). Taken at once (τ = 0), a resting soft ellipsoid (E = 1 MPa) never
+/// slept on either solver: its dent, far more compliant than the contact spring, and the force chased each
+/// other; 0.02 s let it sleep at one height (to 0.4 mm) on 2, 4 or 8 substeps of 1/60 s (soft solver) and
+/// on 8 or 30 (penalty).
+inline constexpr double k_contact_correction_time = 0.02;
+
 /// Model: how a modal basis moves a collider's rest samples, shared by identical modal bodies.
 struct ModalSurface {
     std::shared_ptr<const Collider> rest;    ///< Rest shape; its samples are in the body frame.
     std::shared_ptr<const ModalBasis> basis; ///< The basis the displacements come from.
     std::vector<double> sample_modes;        ///< Per rest sample, (3 × r) body-frame displacement per
                                              ///< unit amplitude, entry (sample·3 + axis)·r + k [1/√kg].
+    std::vector<LatticeWeights> sample_weights;       ///< Per rest sample, where it sits in the lattice (a
+                                                      ///< nodal field at the sample: the static correction).
     std::shared_ptr<const modal::StressModel> stress; ///< Stress points and stress per unit amplitude.
     std::shared_ptr<modal::AccuracyCache> accuracy;   ///< Full lattice for the accuracy report, built on
                                                       ///< first use.
@@ -63,6 +72,7 @@ struct ModalModel {
     double adaptive_tolerance = 0.0; ///< ModalBodyDef::adaptive_tolerance [m]; 0 = not adaptive.
     double remould_threshold = 0.0;  ///< ModalBodyDef::remould_threshold [-]; 0 = never.
     int remould_delay_steps = 1;     ///< ModalBodyDef::remould_delay_steps [-].
+    bool static_correction = false;  ///< ModalBodyDef::static_correction.
     /// Each kept mode's relative frequency change from the lattice half as fine, when the lattice was
     /// chosen for the budget (modal/auto_lattice.h) [-] (r); empty otherwise.
     std::vector<double> lattice_changes;
@@ -105,6 +115,12 @@ struct ModalState {
     uint64_t remould_step = 0;             ///< Step count at whose boundary a rebuild takes over; 0: none.
     std::vector<double> remould_q_plastic; ///< (r) q_p when it was asked for [√kg·m]: what it absorbs.
     bool remould_failed = false;           ///< A rebuild failed (a cell turned inside out): no more.
+    /// (3 × nodes) the static correction of the last substep's contact and host loads [m], body frame:
+    /// what the modes left out would add at each node (ModalBodyDef::static_correction); empty: off.
+    std::vector<double> correction;
+    /// (3 × nodes) the part of `correction` that contact loads make [m], relaxed towards their static
+    /// answer over k_contact_correction_time (the surface it moves feeds back into the contact force).
+    std::vector<double> contact_correction;
 };
 
 /// Loads of one substep: added by contact (nodal), constraints (load) and the host (host nodal loads,
@@ -116,6 +132,11 @@ struct ModalLoads {
     bool has_nodal_load = false;
     std::vector<double> host_nodal_load; ///< (3 × nodes) host point loads of this step lumped likewise [N].
     bool has_host_nodal_load = false;
+    /// (3 × nodes) the soft solver's contact forces of this substep lumped likewise [N]. They reached the
+    /// modes through `load` already; only the static correction and the accuracy report read them.
+    std::vector<double> solved_nodal_load;
+    bool has_solved_nodal_load = false;
+    std::vector<double> correction_load, correction_answer; ///< (3 × nodes) scratch of the static correction.
     std::vector<double> contact; ///< (r) Φᵀ nodal_load, made by the step: a kick [N/√kg] (scratch).
 };
 

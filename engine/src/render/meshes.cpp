@@ -142,8 +142,9 @@ ModalSkin::~ModalSkin()
     glDeleteBuffers(1, &m_vbo);
 }
 
-void ModalSkin::observe(uint64_t step_count, std::span<const double> q)
+void ModalSkin::observe(uint64_t step_count, std::span<const double> q, std::vector<Vec3> correction)
 {
+    m_correction = std::move(correction);
     // Same step: the amplitudes may still have been set by the host; take them, keep the previous.
     // One step on: the last ones become the previous. A jump of several steps (or the first frame)
     // has no previous step to blend from, so both are set to now.
@@ -165,6 +166,8 @@ void ModalSkin::update(double alpha, double scale)
         m_q[k] = scale * ((1.0 - alpha) * m_prev_q[k] + alpha * m_cur_q[k]);
     m_positions.resize(rest.positions.size());
     modal_nodal_displacements(*m_basis, m_q, m_nodal); // the modes once per node, then 20 weights per vertex
+    for (size_t n = 0; n < m_correction.size() && n < m_nodal.size(); ++n)
+        m_nodal[n] += scale * m_correction[n];
     for (size_t n = 0; n < m_rest_offsets.size() && n < m_nodal.size(); ++n)
         m_nodal[n] += m_rest_offsets[n]; // a remoulded rest shape, not scaled with the deformation
     for (size_t i = 0; i < rest.positions.size(); ++i)

@@ -63,8 +63,9 @@ class ModalSkin
     ModalSkin(const ModalSkin&) = delete;
     ModalSkin& operator=(const ModalSkin&) = delete;
 
-    /// Records the amplitudes after step `step_count` (the previous ones are kept for blending).
-    void observe(uint64_t step_count, std::span<const double> amplitudes);
+    /// Records the amplitudes after step `step_count` (the previous ones are kept for blending) and the
+    /// static correction per lattice node [m] (empty: none), shown as it is now.
+    void observe(uint64_t step_count, std::span<const double> amplitudes, std::vector<Vec3> correction = {});
     /// Moves the vertices by scale × u(q), q blended by alpha between the last two observed steps, and
     /// uploads them; normals turn with the faces around each vertex.
     void update(double alpha, double scale);
@@ -81,6 +82,7 @@ class ModalSkin
     std::vector<double> m_prev_q, m_cur_q, m_q;
     std::vector<Vec3> m_nodal;        ///< Per lattice node, this frame: the modes summed once.
     std::vector<Vec3> m_rest_offsets; ///< Per lattice node, the moulded rest shape's offsets [m].
+    std::vector<Vec3> m_correction;   ///< Per lattice node, the static correction last observed [m].
     uint64_t m_step = ~uint64_t{0};
     std::vector<Vec3> m_positions, m_face_normals;
     Aabb m_bounds;

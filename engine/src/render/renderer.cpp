@@ -493,7 +493,7 @@ void Renderer::Impl::collect_bodies(const World& world, PoseSource poses, const 
         auto color = colors.find(b);
         if (e.skin) {
             const BodyModalState state = body_modal_state(world, b);
-            e.skin->observe(world.step_count(), state.amplitudes);
+            e.skin->observe(world.step_count(), state.amplitudes, body_static_correction(world, b));
             e.skin->update(alpha, def.deformation_scale);
         }
         items.push_back({&e, model, color != colors.end() ? color->second : index_color(b.index)});

@@ -31,8 +31,8 @@ const std::vector<std::vector<std::string_view>> k_shape_keys = {
 static_assert(static_cast<int>(ShapeType::Plane) == 1 && static_cast<int>(ShapeType::Hyperquadric) == 2);
 const std::vector<std::string_view> k_term_keys = {"normal", "offset", "exponent"};
 const std::vector<std::string_view> k_bend_keys = {"curvature", "angle"};
-const std::vector<std::string_view> k_dynamics_keys = {"type", "modes", "lattice", "integrator",
-                                                       "damping_ratio"};
+const std::vector<std::string_view> k_dynamics_keys = {"type",       "modes",         "lattice",
+                                                       "integrator", "damping_ratio", "static_correction"};
 // In ModalIntegrator order, so a choice's index is its enumerator.
 const std::vector<std::string_view> k_integrator_names = {"exact", "central_difference"};
 static_assert(static_cast<int>(ModalIntegrator::Exact) == 0 &&
@@ -325,6 +325,7 @@ void read_dynamics(Reader& r, const Json& body, const std::string& where, const 
         modal.integrator = static_cast<ModalIntegrator>(index);
     }
     r.field_number(*dynamics, dynamics_where, "damping_ratio", at_least(0.0), modal.damping_ratio);
+    r.field_bool(*dynamics, dynamics_where, "static_correction", modal.static_correction);
     if (!r.ok())
         return;
     out_body.dynamics = static_cast<DynamicsType>(type);

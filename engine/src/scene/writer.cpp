@@ -165,7 +165,7 @@ Json body_json(const Scene& scene, const SceneBody& body)
     const ModalBodyDef& m = d.modal;
     if (body.dynamics == DynamicsType::Rigid && !m.enabled && m.mode_count == no_dynamics.mode_count &&
         m.lattice == no_dynamics.lattice && m.integrator == no_dynamics.integrator &&
-        m.damping_ratio == no_dynamics.damping_ratio)
+        m.damping_ratio == no_dynamics.damping_ratio && m.static_correction == no_dynamics.static_correction)
         return j;
     Json dyn = Json::object();
     dyn["type"] = k_dynamics_names[static_cast<size_t>(body.dynamics)];
@@ -177,6 +177,8 @@ Json body_json(const Scene& scene, const SceneBody& body)
     dyn["integrator"] = k_integrator_names[static_cast<size_t>(d.modal.integrator)];
     if (d.modal.damping_ratio != material.damping_ratio)
         dyn["damping_ratio"] = d.modal.damping_ratio;
+    if (d.modal.static_correction)
+        dyn["static_correction"] = true;
     j["dynamics"] = dyn;
     return j;
 }

@@ -708,6 +708,27 @@ void restitute_soft_pair(void* rows, size_t pair)
 namespace
 {
 
+// The normal forces the rows put on modal bodies' modes, lumped on their lattice nodes (the static
+// correction and the accuracy report read them; friction on a modal side moves its rigid part only). In
+// pair order on this thread: a body in several pairs sums its loads in one order.
+void lump_modal_forces(Registry& reg, const ContactWorld& io)
+{
+    const SoftContacts& rows = io.soft;
+    for (const SoftPair& sp : rows.pairs) {
+        const BodyPair& pair = io.pairs[sp.pair];
+        for (uint32_t i = 0; i < sp.count; ++i) {
+            const SoftPoint& p = rows.points[sp.first + i];
+            if (p.normal_impulse == 0.0)
+                continue;
+            const Vec3 f = (p.normal_impulse / rows.h) * p.normal;
+            if (p.a.modal.active())
+                modal_add_solved_load(reg, pair.a, p.a.point, f);
+            if (p.b.modal.active())
+                modal_add_solved_load(reg, pair.b, p.b.point, -1.0 * f);
+        }
+    }
+}
+
 // Speculative rows alone (a gap, no push) are not a contact: no events, not in the list.
 bool is_contact(const ContactInfo& info, double normal_force)
 {
@@ -737,7 +758,7 @@ void finish_pair(ContactWorld& io, size_t i, double h)
 
 } // namespace
 
-void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io)
+void finish_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io)
 {
     SoftContacts& rows = io.soft;
     std::vector<PairAnchor>& anchors = io.next_anchors;
@@ -757,6 +778,7 @@ void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWo
         io.max_penetration = std::max(io.max_penetration, info.depth);
     }
     io.anchors.swap(anchors);
+    lump_modal_forces(reg, io);
 }
 
 } // namespace supermodal

@@ -129,6 +129,6 @@ void advance_soft_separations(const Parallel& par, SoftContacts& io);
 /// A point's effective masses: along the normal with the modes, in the contact plane without them.
 void set_point_masses(SoftPoint& p);
 /// The pairs' loads into their anchors (warm starting), contacts, events and the deepest overlap.
-void finish_soft_contacts(const StepContext& ctx, const Parallel& par, ContactWorld& io);
+void finish_soft_contacts(const StepContext& ctx, const Parallel& par, Registry& reg, ContactWorld& io);
 
 } // namespace supermodal

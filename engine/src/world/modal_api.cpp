@@ -236,6 +236,15 @@ BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_po
     return out;
 }
 
+std::vector<Vec3> body_static_correction(const World& world, Entity e)
+{
+    std::vector<Vec3> out;
+    if (const ModalBody* b = modal_of(world, e))
+        for (size_t i = 0; i + 2 < b->state.correction.size(); i += 3)
+            out.push_back({b->state.correction[i], b->state.correction[i + 1], b->state.correction[i + 2]});
+    return out;
+}
+
 Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
 {
     if (!live(world, e))
@@ -247,6 +256,8 @@ Vec3 body_deformed_point(const World& world, Entity e, const Vec3& point_shape)
     if (const ModalBody* b = w.reg.find<ModalBody>(e)) {
         const LatticeWeights lw = modal_weights(*b->model->basis, point_shape);
         local += modal_displacement(*b->model->basis, lw, b->state.q);
+        if (!b->state.correction.empty()) // the static correction of the last substep's loads
+            local += modal::interpolate_flat(lw, b->state.correction);
         if (!b->model->surface->rest_offsets.empty()) // remoulded: the rest shape moved too
             local += interpolate_nodal(lw, b->model->surface->rest_offsets);
     }

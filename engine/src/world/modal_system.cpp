@@ -29,8 +29,10 @@ std::shared_ptr<const ModalSurface> make_modal_surface(std::shared_ptr<const Col
     const size_t r = static_cast<size_t>(basis->mode_count);
     const std::vector<SurfaceSample>& samples = material->samples->samples; // named where they were
     surface->sample_modes.assign(samples.size() * 3 * r, 0.0);
+    surface->sample_weights.resize(samples.size());
     for (size_t i = 0; i < samples.size(); ++i) {
-        const LatticeWeights lw = modal_weights(*basis, samples[i].point + material->com_shape);
+        const LatticeWeights& lw = surface->sample_weights[i] =
+            modal_weights(*basis, samples[i].point + material->com_shape);
         double* d = &surface->sample_modes[i * 3 * r];
         for (int j = 0; j < lw.count; ++j) {
             const double* phi = &basis->mode_shapes[static_cast<size_t>(lw.nodes[j]) * 3 * r];
@@ -85,6 +87,7 @@ std::shared_ptr<const ModalModel> make_model(std::shared_ptr<const ModalSurface>
     model->adaptive_tolerance = def.modal.adaptive_tolerance;
     model->remould_threshold = def.modal.remould_threshold;
     model->remould_delay_steps = def.modal.remould_delay_steps;
+    model->static_correction = def.modal.static_correction;
     model->lattice_changes = choice.frequency_changes;
     model->surface = std::move(surface);
     model->basis = choice.basis;
@@ -102,6 +105,7 @@ bool same_model(const ModalModel& m, const std::shared_ptr<const Collider>& rest
            m.adaptive_tolerance == def.modal.adaptive_tolerance &&
            m.remould_threshold == def.modal.remould_threshold &&
            m.remould_delay_steps == def.modal.remould_delay_steps &&
+           m.static_correction == def.modal.static_correction &&
            m.lattice_changes == choice.frequency_changes;
 }
 
@@ -211,9 +215,17 @@ void attach_modal_body(World::Impl& w, Entity e, const modal::LatticeChoice& cho
     b.loads.load.assign(r, 0.0);
     b.loads.nodal_load.assign(nodal, 0.0);
     b.loads.host_nodal_load.assign(nodal, 0.0);
+    b.loads.solved_nodal_load.assign(nodal, 0.0);
     b.stats.last_nodal_load.assign(nodal, 0.0);
     b.stats.last_load.assign(r, 0.0);
     b.stats.most_active = b.state.active;
+    if (def.modal.static_correction) {
+        b.state.correction.assign(nodal, 0.0);
+        b.state.contact_correction.assign(nodal, 0.0);
+        // The full lattice is factored now rather than in the first loaded substep. Where it cannot be,
+        // the correction stays zero and body_modal_accuracy() says why.
+        (void)b.model->surface->accuracy->get(*b.model->basis);
+    }
     // Its own collider and samples: the deformed surface belongs to this body alone. The rest shape's
     // support point would ignore the deformation, so the body counts as non-convex (samples only).
     b.deformed.samples = std::make_shared<SampleSet>(*m.collider->samples);
@@ -284,6 +296,14 @@ void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, cons
     if (lump_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point, world_force,
                   b->loads.nodal_load))
         b->loads.has_nodal_load = true;
+}
+
+void modal_add_solved_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
+{
+    ModalBody* b = reg.find<ModalBody>(e);
+    if (b != nullptr && lump_load(*b->model, reg.get<BodyModel>(e), reg.get<Pose>(e), world_point,
+                                  world_force, b->loads.solved_nodal_load))
+        b->loads.has_solved_nodal_load = true;
 }
 
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
@@ -375,7 +395,7 @@ void project_loads(const ModalModel& m, const ModalState& s, ModalLoads& io, Mod
     // The last substep's nodal loads stay for the accuracy report: swap instead of clearing.
     if (stats.last_has_load)
         std::fill(stats.last_nodal_load.begin(), stats.last_nodal_load.end(), 0.0);
-    stats.last_has_load = io.has_nodal_load || io.has_host_nodal_load;
+    stats.last_has_load = io.has_nodal_load || io.has_host_nodal_load || io.has_solved_nodal_load;
     // Contact loads apart from the held ones (constraints, host): they are stepped as a kick.
     io.contact.assign(r, 0.0);
     if (io.has_nodal_load) {
@@ -394,6 +414,13 @@ void project_loads(const ModalModel& m, const ModalState& s, ModalLoads& io, Mod
     if (io.has_host_nodal_load)
         for (size_t i = 0; i < stats.last_nodal_load.size(); ++i)
             stats.last_nodal_load[i] += io.host_nodal_load[i];
+    if (io.has_solved_nodal_load) {
+        for (size_t i = 0; i < stats.last_nodal_load.size(); ++i) {
+            stats.last_nodal_load[i] += io.solved_nodal_load[i];
+            io.solved_nodal_load[i] = 0.0;
+        }
+        io.has_solved_nodal_load = false;
+    }
     for (size_t k = 0; k < r; ++k)
         stats.last_load[k] = (io.load[k] + io.contact[k]) + s.host_force[k];
 }
@@ -452,11 +479,47 @@ bool integrate_modes(const ModalModel& m, const ModalSubstepMaps& maps, double h
     return switched;
 }
 
+// Mode acceleration: the static answer of the modes the surface does not show to this substep's contact
+// and host loads, added to the surface until the next substep replaces it.
+// Mode acceleration: the static answer of the modes the surface does not show to this substep's loads,
+// shown on the surface until the next substep replaces it. Host loads enter at once. Contact loads feed
+// back (the dent moves the surface the contact force comes from), and the dent of a point load on a soft
+// body is far more compliant than the contact spring: taken at once, the force and the dent chased each
+// other every substep (a resting soft ellipsoid never slept). So their part relaxes towards its answer
+// over k_contact_correction_time; at rest it is the same answer. Reads the loads before project_loads
+// merges them.
+void correct_statically(double h, const ModalModel& m, ModalLoads& io, ModalState& s)
+{
+    const modal::AccuracyModel* full = m.surface->accuracy->get(*m.basis);
+    const size_t n = s.correction.size();
+    std::vector<double>& load = io.correction_load;
+    std::vector<double>& answer = io.correction_answer;
+    load.assign(n, 0.0);
+    answer.assign(n, 0.0);
+    const bool contact = io.has_nodal_load || io.has_solved_nodal_load;
+    for (size_t i = 0; i < n && contact; ++i)
+        load[i] = (io.has_nodal_load ? io.nodal_load[i] : 0.0) +
+                  (io.has_solved_nodal_load ? io.solved_nodal_load[i] : 0.0);
+    if (full != nullptr && contact)
+        modal::static_correction(*full, *m.basis, load, m.omega, s.active, answer);
+    const double share = 1.0 - std::exp(-h / k_contact_correction_time);
+    for (size_t i = 0; i < n; ++i)
+        s.contact_correction[i] += share * (answer[i] - s.contact_correction[i]);
+    std::fill(answer.begin(), answer.end(), 0.0);
+    if (full != nullptr && io.has_host_nodal_load)
+        modal::static_correction(*full, *m.basis, io.host_nodal_load, m.omega, s.active, answer);
+    for (size_t i = 0; i < n; ++i)
+        s.correction[i] = s.contact_correction[i] + answer[i];
+}
+
 // A fault stays in this body's deformation: back to the rest shape. Returns whether it was needed.
 bool reset_non_finite(ModalState& s)
 {
-    if (all_finite(s.q) && all_finite(s.q_dot) && all_finite(s.q_plastic))
+    if (all_finite(s.q) && all_finite(s.q_dot) && all_finite(s.q_plastic) && all_finite(s.correction) &&
+        all_finite(s.contact_correction))
         return false;
+    std::fill(s.correction.begin(), s.correction.end(), 0.0);
+    std::fill(s.contact_correction.begin(), s.contact_correction.end(), 0.0);
     std::fill(s.q.begin(), s.q.end(), 0.0);
     std::fill(s.q_dot.begin(), s.q_dot.end(), 0.0);
     std::fill(s.q_plastic.begin(), s.q_plastic.end(), 0.0);
@@ -468,6 +531,8 @@ bool reset_non_finite(ModalState& s)
 uint8_t step_modal_body(double h, ModalBody& b)
 {
     const ModalModel& m = *b.model;
+    if (m.static_correction)
+        correct_statically(h, m, b.loads, b.state);
     project_loads(m, b.state, b.loads, b.stats);
     if (m.adaptive())
         choose_active(b);
@@ -529,6 +594,8 @@ void update_modal_surface(ModalBody& b)
             u.y += d[r + k] * q[k];
             u.z += d[2 * r + k] * q[k];
         }
+        if (!b.state.correction.empty())
+            u += modal::interpolate_flat(surface.sample_weights[i], b.state.correction);
         out.samples[i].point = rest.samples[i].point + u;
         max_u2 = std::max(max_u2, dot(u, u));
     }

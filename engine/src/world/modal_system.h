@@ -47,7 +47,10 @@ void set_active_modes(ModalBody& b, size_t active);
 /// Adds a point load f [N] at world point x [m] to e's contact generalized forces of this substep:
 /// Q += φ(x_local)ᵀ Rᵀ f. Does nothing for rigid bodies.
 void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
-/// The same into the host forces held for the next step (apply_force).
+/// A force the soft solver's rows already put on e's modes (through ModalLoads::load), lumped on the
+/// lattice nodes for the static correction and the accuracy report only.
+void modal_add_solved_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
+/// The same as modal_add_point_load into the host forces held for the next step (apply_force).
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
 /// Makes the substep maps (exact step maps, sinc(ω_k h / 2)) of every modal body's model for substep h [s],
 /// unless made for h already. On the stepping thread, before contact or the modal update read them in

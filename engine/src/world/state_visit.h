@@ -96,6 +96,15 @@ template <class V, class S> void visit_modal(V& v, S& s, const ModalModel& m)
     v.flag(s.remould_failed, Field::Saved);
     v.check(s.remould_q_plastic.size() == (s.remould_step != 0 ? r : 0),
             "corrupt snapshot: a pending remould has the wrong mode count");
+    // The static correction shapes the next substep's surface: hashed (empty, as for bodies without it,
+    // it adds nothing).
+    for (auto& x : v.sequence(s.correction, Field::Saved))
+        v.real(x, Field::Hashed);
+    for (auto& x : v.sequence(s.contact_correction, Field::Saved))
+        v.real(x, Field::Hashed);
+    v.check(s.correction.empty() == !m.static_correction &&
+                s.contact_correction.size() == s.correction.size(),
+            "corrupt snapshot: a modal body's static correction does not match its model");
 }
 
 template <class V, class W> void visit_bodies(V& v, W& w)

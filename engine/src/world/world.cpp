@@ -242,7 +242,7 @@ template <class Run> void World::Impl::soft_substep(const StepContext& ctx, Run&
         if (last)
             solve_extra_rows(parallel, scratch.constraints, relax.count, 1, &restitute_soft_pair,
                              &contact.soft);
-        finish_soft_contacts(ctx, parallel, contact);
+        finish_soft_contacts(ctx, parallel, reg, contact);
         freeze_non_finite(ctx, Stage::PenaltyForces, parallel, reg, scratch.integrate, warnings);
     });
     run(Stage::ModalUpdate, [&] { update_modal_bodies(ctx, parallel, reg, scratch.modal, warnings); });
