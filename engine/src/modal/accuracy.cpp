@@ -154,17 +154,64 @@ ModalAccuracy evaluate_accuracy(const AccuracyModel& m, const ModalBasis& basis,
     return out;
 }
 
+void StaticColumns::get(const AccuracyModel& m, std::span<const int> dofs, std::vector<const double*>& out)
+{
+    const Eigen::Index n = m.stiffness.rows();
+    const std::lock_guard<std::mutex> lock(m_mutex);
+    m_columns.resize(static_cast<size_t>(n));
+    out.clear();
+    for (const int j : dofs) {
+        std::unique_ptr<const std::vector<double>>& column = m_columns[static_cast<size_t>(j)];
+        if (column == nullptr) {
+            const Eigen::VectorXd answer = static_response(m, Eigen::VectorXd::Unit(n, j));
+            column = std::make_unique<const std::vector<double>>(answer.data(), answer.data() + n);
+        }
+        out.push_back(column->data());
+    }
+}
+
+size_t StaticColumns::size() const
+{
+    const std::lock_guard<std::mutex> lock(m_mutex);
+    return static_cast<size_t>(
+        std::count_if(m_columns.begin(), m_columns.end(), [](const auto& c) { return c != nullptr; }));
+}
+
 void static_correction(const AccuracyModel& m, const ModalBasis& basis, std::span<const double> nodal_force,
                        std::span<const double> omega, size_t shown, std::span<double> out)
 {
-    const Eigen::Index n = m.stiffness.rows();
-    if (static_cast<Eigen::Index>(nodal_force.size()) != n || static_cast<Eigen::Index>(out.size()) != n ||
-        omega.size() != static_cast<size_t>(basis.mode_count))
+    const size_t n = static_cast<size_t>(m.stiffness.rows());
+    const size_t r = static_cast<size_t>(basis.mode_count);
+    if (nodal_force.size() != n || out.size() != n || omega.size() != r)
         return;
-    const auto phi = modes_of(basis);
-    const Eigen::VectorXd f = vec(nodal_force);
-    Eigen::Map<Eigen::VectorXd>(out.data(), n) =
-        static_response(m, f) - phi * kept_static(phi, f, omega, shown);
+    std::vector<int> loaded;
+    for (size_t j = 0; j < n; ++j)
+        if (nodal_force[j] != 0.0)
+            loaded.push_back(static_cast<int>(j));
+    std::vector<const double*> columns;
+    m.columns.get(m, loaded, columns);
+    // K⁺_e F = Σ_j F_j K⁺_e e_j over the loaded dofs, in dof order; then less Φ Ω⁻² Φᵀ F of the shown modes.
+    std::fill(out.begin(), out.end(), 0.0);
+    std::vector<double> kept(std::min(shown, r), 0.0);
+    for (size_t c = 0; c < loaded.size(); ++c) {
+        const size_t j = static_cast<size_t>(loaded[c]);
+        const double f = nodal_force[j];
+        const double* column = columns[c];
+        for (size_t i = 0; i < n; ++i)
+            out[i] += f * column[i];
+        const double* phi = &basis.mode_shapes[j * r];
+        for (size_t k = 0; k < kept.size(); ++k)
+            kept[k] += phi[k] * f;
+    }
+    for (size_t k = 0; k < kept.size(); ++k)
+        kept[k] = omega[k] > 0.0 ? kept[k] / (omega[k] * omega[k]) : 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const double* phi = &basis.mode_shapes[i * r];
+        double u = 0.0;
+        for (size_t k = 0; k < kept.size(); ++k)
+            u += phi[k] * kept[k];
+        out[i] -= u;
+    }
 }
 
 Vec3 interpolate_flat(const LatticeWeights& weights, std::span<const double> nodal)

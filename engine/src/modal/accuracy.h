@@ -12,9 +12,30 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace supermodal::modal
 {
+
+struct AccuracyModel;
+
+/// Columns of the full lattice's static flexibility with inertia relief, K⁺_e e_j (3n each) [m/N], each
+/// solved the first time a load reaches dof j and kept. A point load reaches the 60 dofs of its cell and a
+/// resting contact the same few hundred substep after substep, so a static answer is then a sum of those
+/// columns instead of a sparse solve (10–30× cheaper on 1335–4386 dofs). Thread-safe; the columns do not
+/// depend on which thread made them or when.
+class StaticColumns
+{
+  public:
+    /// The columns of `dofs` (ascending), made where missing; valid while the model lives.
+    void get(const AccuracyModel& model, std::span<const int> dofs, std::vector<const double*>& out);
+    /// Columns made so far [-].
+    [[nodiscard]] size_t size() const;
+
+  private:
+    mutable std::mutex m_mutex;
+    std::vector<std::unique_ptr<const std::vector<double>>> m_columns; ///< (3n) null until made.
+};
 
 /// The full lattice of a basis with what the report needs factored once.
 struct AccuracyModel {
@@ -23,6 +44,7 @@ struct AccuracyModel {
     Eigen::SimplicialLDLT<SparseMatrix> mass_solver;   ///< M⁻¹ for the norms.
     Eigen::SimplicialLDLT<SparseMatrix> pinned_solver; ///< K with six pinned dofs (static solves).
     std::array<int, 6> pinned{};                       ///< The pinned dofs.
+    mutable StaticColumns columns;                     ///< For static_correction, made on use.
 };
 
 /// Assembles the lattice of `def` (the def the basis was built from) and factors M and the pinned K.
@@ -60,7 +82,8 @@ struct AccuracyInput {
 /// The static correction (mode acceleration) of nodal loads F (3n) [N], body frame: the full lattice's
 /// static response to F's elastic part (inertia relief: F − M Ψ Ψᵀ F, with no rigid motion) minus the part
 /// the first `shown` modes carry, Φ Ω⁻² Φᵀ F. What the dropped modes would do if they answered F at once:
-/// it adds to the modal displacement, nodal, into `out` (3n) [m]. Costs one solve with the pinned K.
+/// it adds to the modal displacement, nodal, into `out` (3n) [m]. Costs a sum of one stored column per
+/// loaded dof (StaticColumns; a solve with the pinned K for each dof loaded for the first time).
 void static_correction(const AccuracyModel& model, const ModalBasis& basis,
                        std::span<const double> nodal_force, std::span<const double> omega, size_t shown,
                        std::span<double> out);
