@@ -137,6 +137,8 @@ struct ModalLoads {
     std::vector<double> solved_nodal_load;
     bool has_solved_nodal_load = false;
     std::vector<double> correction_load, correction_answer; ///< (3 × nodes) scratch of the static correction.
+    double spring_work = 0.0;    ///< Σ over this substep's contact points of normal force × depth [J]: with
+                                 ///< Fᵀ u_c, how much more compliant the dent is than the contact spring.
     std::vector<double> contact; ///< (r) Φᵀ nodal_load, made by the step: a kick [N/√kg] (scratch).
 };
 

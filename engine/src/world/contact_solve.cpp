@@ -721,10 +721,15 @@ void lump_modal_forces(Registry& reg, const ContactWorld& io)
             if (p.normal_impulse == 0.0)
                 continue;
             const Vec3 f = (p.normal_impulse / rows.h) * p.normal;
-            if (p.a.modal.active())
+            const double work = p.normal_impulse / rows.h * std::max(p.depth, 0.0);
+            if (p.a.modal.active()) {
                 modal_add_solved_load(reg, pair.a, p.a.point, f);
-            if (p.b.modal.active())
+                modal_add_spring_work(reg, pair.a, work);
+            }
+            if (p.b.modal.active()) {
                 modal_add_solved_load(reg, pair.b, p.b.point, -1.0 * f);
+                modal_add_spring_work(reg, pair.b, work);
+            }
         }
     }
 }

@@ -481,6 +481,9 @@ void load_modes(Registry& reg, const ContactWorld& io, size_t pi)
         const Vec3 fv = force[i] * points[i].normal;
         modal_add_point_load(reg, pair.a, points[i].point, fv);
         modal_add_point_load(reg, pair.b, points[i].point, -1.0 * fv);
+        const double work = std::abs(force[i]) * std::max(points[i].depth, 0.0);
+        modal_add_spring_work(reg, pair.a, work);
+        modal_add_spring_work(reg, pair.b, work);
     }
     const PairForce& pf = io.pair_force[pi];
     modal_add_point_load(reg, pair.a, pf.info.point, pf.friction_force);

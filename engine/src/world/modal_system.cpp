@@ -306,6 +306,12 @@ void modal_add_solved_load(Registry& reg, Entity e, const Vec3& world_point, con
         b->loads.has_solved_nodal_load = true;
 }
 
+void modal_add_spring_work(Registry& reg, Entity e, double work)
+{
+    if (ModalBody* b = reg.find<ModalBody>(e))
+        b->loads.spring_work += work;
+}
+
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force)
 {
     if (ModalBody* b = reg.find<ModalBody>(e)) {
@@ -483,11 +489,13 @@ bool integrate_modes(const ModalModel& m, const ModalSubstepMaps& maps, double h
 // and host loads, added to the surface until the next substep replaces it.
 // Mode acceleration: the static answer of the modes the surface does not show to this substep's loads,
 // shown on the surface until the next substep replaces it. Host loads enter at once. Contact loads feed
-// back (the dent moves the surface the contact force comes from), and the dent of a point load on a soft
-// body is far more compliant than the contact spring: taken at once, the force and the dent chased each
-// other every substep (a resting soft ellipsoid never slept). So their part relaxes towards its answer
-// over k_contact_correction_time; at rest it is the same answer. Reads the loads before project_loads
-// merges them.
+// back: the dent moves the surface the contact force comes from, and on a soft body the dent can be far
+// more compliant than the contact spring. Taken at once, force and dent chased each other every substep
+// (a resting soft ellipsoid never slept). So their part moves a share of the way to its answer each
+// substep: 1 − e^(−h/τ) (τ = k_contact_correction_time), at most 1 / (1 + g), where g = Fᵀu / Σ f·depth
+// is the dent's compliance over the springs' (for one point: k·c). A lag loop with gain g is stable
+// while share·(1 + g) < 2 and does not overshoot at 1; the load-tuned soft spring stiffens with the load,
+// so g grows with it. At rest it is the same answer. Reads the loads before project_loads merges them.
 void correct_statically(double h, const ModalModel& m, ModalLoads& io, ModalState& s)
 {
     const modal::AccuracyModel* full = m.surface->accuracy->get(*m.basis);
@@ -502,7 +510,15 @@ void correct_statically(double h, const ModalModel& m, ModalLoads& io, ModalStat
                   (io.has_solved_nodal_load ? io.solved_nodal_load[i] : 0.0);
     if (full != nullptr && contact)
         modal::static_correction(*full, *m.basis, load, m.omega, s.active, answer);
-    const double share = 1.0 - std::exp(-h / k_contact_correction_time);
+    double gain = 0.0;
+    if (contact && io.spring_work > 0.0) {
+        double dent_work = 0.0;
+        for (size_t i = 0; i < n; ++i)
+            dent_work += load[i] * answer[i];
+        gain = std::max(dent_work, 0.0) / io.spring_work;
+    }
+    io.spring_work = 0.0;
+    const double share = std::min(1.0 - std::exp(-h / k_contact_correction_time), 1.0 / (1.0 + gain));
     for (size_t i = 0; i < n; ++i)
         s.contact_correction[i] += share * (answer[i] - s.contact_correction[i]);
     std::fill(answer.begin(), answer.end(), 0.0);

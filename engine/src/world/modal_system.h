@@ -50,6 +50,8 @@ void modal_add_point_load(Registry& reg, Entity e, const Vec3& world_point, cons
 /// A force the soft solver's rows already put on e's modes (through ModalLoads::load), lumped on the
 /// lattice nodes for the static correction and the accuracy report only.
 void modal_add_solved_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
+/// Notes a contact point's normal force × its depth [J] on e (static correction: the spring's compliance).
+void modal_add_spring_work(Registry& reg, Entity e, double work);
 /// The same as modal_add_point_load into the host forces held for the next step (apply_force).
 void modal_add_host_load(Registry& reg, Entity e, const Vec3& world_point, const Vec3& world_force);
 /// Makes the substep maps (exact step maps, sinc(ω_k h / 2)) of every modal body's model for substep h [s],
