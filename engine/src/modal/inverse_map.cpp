@@ -36,7 +36,8 @@ bool invert(const Mat3& a, Mat3& out)
 
 } // namespace
 
-InverseMap invert_deformation(const ModalBasis& basis, std::span<const double> q, const Vec3& p)
+InverseMap invert_deformation(const ModalBasis& basis, std::span<const double> q, const Vec3& p,
+                              std::span<const double> nodal)
 {
     InverseMap out;
     if (!is_finite(p))
@@ -47,10 +48,10 @@ InverseMap invert_deformation(const ModalBasis& basis, std::span<const double> q
     constexpr int k_max_iterations = 12; // small strains converge in 2–3 steps
     Vec3 u{};
     Mat3 grad{};
-    displacement_and_gradient(basis, p, q, u, grad);
+    displacement_and_gradient(basis, p, q, u, grad, nodal);
     Vec3 x = p - u;
     for (int it = 0; it < k_max_iterations; ++it) {
-        displacement_and_gradient(basis, x, q, u, grad);
+        displacement_and_gradient(basis, x, q, u, grad, nodal);
         for (int i = 0; i < 3; ++i)
             grad.m[i][i] += 1.0; // F = I + ∇u
         if (!invert(grad, out.inverse_deformation))

@@ -18,8 +18,9 @@ struct InverseMap {
     int iterations = 0;
 };
 /// Solves X + u(X) = p from X₀ = p − u(p) by Newton's method (12 steps at most, tolerance 1e-10 of the
-/// lattice's largest side). Not converged when F turns singular (a folded field) or the steps diverge.
-[[nodiscard]] InverseMap invert_deformation(const ModalBasis& basis, std::span<const double> q,
-                                            const Vec3& p);
+/// lattice's largest side), u the modes' field plus `nodal` (3 × nodes [m], a static correction; empty:
+/// none). Not converged when F turns singular (a folded field) or the steps diverge.
+[[nodiscard]] InverseMap invert_deformation(const ModalBasis& basis, std::span<const double> q, const Vec3& p,
+                                            std::span<const double> nodal = {});
 
 } // namespace supermodal::modal

@@ -91,7 +91,7 @@ Voigt stress_at(const ModalBasis& basis, const Vec3& point_shape, std::span<cons
 }
 
 void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q,
-                               Vec3& out_u, Mat3& out_gradient)
+                               Vec3& out_u, Mat3& out_gradient, std::span<const double> nodal)
 {
     out_u = {};
     out_gradient = {};
@@ -105,6 +105,8 @@ void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape,
             double u = 0.0;
             for (int k = 0; k < used; ++k)
                 u += phi[i * r + k] * q[k];
+            if (!nodal.empty())
+                u += nodal[static_cast<size_t>(g.nodes[a]) * 3 + static_cast<size_t>(i)];
             out_u[i] += w.weights[a] * u;
             for (int j = 0; j < 3; ++j)
                 out_gradient.m[i][j] += g.grad[a][j] * u;

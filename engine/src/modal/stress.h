@@ -22,9 +22,10 @@ using Voigt = std::array<double, 6>;
 /// from the field of the point's cell (or its proxy's, extended, like modal_weights).
 [[nodiscard]] Voigt stress_at(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q);
 
-/// Displacement u [m] and its gradient J_ij = ∂u_i/∂x_j [-] at a rest point (shape frame) for amplitudes q.
+/// Displacement u [m] and its gradient J_ij = ∂u_i/∂x_j [-] at a rest point (shape frame) for amplitudes q,
+/// plus a nodal field stored flat (3 × nodes [m], e.g. a static correction; empty: none).
 void displacement_and_gradient(const ModalBasis& basis, const Vec3& point_shape, std::span<const double> q,
-                               Vec3& out_u, Mat3& out_gradient);
+                               Vec3& out_u, Mat3& out_gradient, std::span<const double> nodal = {});
 
 /// Where a body's stress is checked, and the stress per unit amplitude there: per cell with nodes, the
 /// 3×3×3 points ξ ∈ {−1, 0, 1}³ (corners, edge and face midpoints, centre) that lie in the body. The

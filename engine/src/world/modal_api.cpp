@@ -215,7 +215,8 @@ BodyPointTest body_point_test(const World& world, Entity e, const Vec3& world_po
     Vec3 rest = local;
     Mat3 forward = Mat3::identity(); // F⁻ᵀ
     if (b != nullptr) {
-        const modal::InverseMap inv = modal::invert_deformation(*b->model->basis, b->state.q, local);
+        const modal::InverseMap inv =
+            modal::invert_deformation(*b->model->basis, b->state.q, local, b->state.correction);
         if (!inv.converged)
             return out;
         rest = inv.rest_point;

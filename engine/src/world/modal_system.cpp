@@ -243,14 +243,15 @@ namespace
 {
 
 // A shape-frame point against the deformed shape: back to the rest point X with X + u(X) = p (Newton,
-// the shown modes only, as the samples show them), the rest shape's measure there, its gradient carried
-// forward by F⁻ᵀ: depth = depth_rest / |F⁻ᵀ n|, normal along F⁻ᵀ n. Where Newton fails (a folded
-// field) the point is tested against the rest shape, as without the inverse map.
+// the shown modes and the static correction, as the samples show them), the rest shape's measure there, its
+// gradient carried forward by F⁻ᵀ: depth = depth_rest / |F⁻ᵀ n|, normal along F⁻ᵀ n. Where Newton fails (a
+// folded field) the point is tested against the rest shape, as without the inverse map.
 InsideTest deformed_inside_test(const void* ctx, const Collider& c, const Vec3& p_shape)
 {
     const auto& b = *static_cast<const ModalBody*>(ctx);
     const std::span<const double> shown{b.state.q.data(), b.state.active};
-    const modal::InverseMap inv = modal::invert_deformation(*b.model->basis, shown, p_shape);
+    const modal::InverseMap inv =
+        modal::invert_deformation(*b.model->basis, shown, p_shape, b.state.correction);
     if (!inv.converged)
         return test_point(c, p_shape);
     InsideTest t = test_point(c, inv.rest_point);
