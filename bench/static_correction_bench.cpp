@@ -12,6 +12,7 @@
 #include "supermodal/body.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
+#include "support/world_fixture.h"
 
 #include <benchmark/benchmark.h>
 #include <chrono>
@@ -31,17 +32,7 @@ const sm::Vec3 k_struck{0.1, 0.0, 0.14}, k_force{5.0, 10.0, -100.0};
 
 sm::BodyDef ellipsoid(int modes, bool correction, std::array<int, 3> cells = {6, 4, 3})
 {
-    sm::BodyDef def = sm::default_body_def();
-    def.shape.radii = {0.3, 0.2, 0.15};
-    def.density = 1000.0;
-    def.young = 1e6;
-    def.poisson = 0.3;
-    def.modal.enabled = true;
-    def.modal.mode_count = modes;
-    def.modal.lattice = cells;
-    def.modal.damping_ratio = 0.02;
-    def.modal.static_correction = correction;
-    return def;
+    return sm::test::soft_ellipsoid_def(modes, 0.02, correction, cells);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0)
@@ -49,11 +40,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Body-frame displacement of a rest point (the ellipsoid's centre of mass is its shape origin).
 sm::Vec3 displacement(const sm::World& world, sm::Entity body, const sm::Vec3& rest)
 {
-    const sm::Vec3 p = sm::body_deformed_point(world, body, rest);
-    return sm::inv_rotate(sm::body_orientation(world, body), p - sm::body_position(world, body)) - rest;
+    return sm::test::body_frame_displacement(world, body, rest);
 }
 
 struct Struck {
@@ -155,10 +144,7 @@ void BM_StaticCorrection_Resting(benchmark::State& st)
     wd.substep_count = 4;
     wd.modal_basis_cache = cache;
     sm::World world(wd);
-    sm::BodyDef floor = sm::default_body_def();
-    floor.shape.type = sm::ShapeType::Plane;
-    floor.motion = sm::MotionType::Static;
-    (void)sm::create_body(world, floor);
+    (void)sm::test::add_ground(world);
     sm::destroy_body(world, sm::create_body(world, ellipsoid(12, false, cells))); // the basis, into the cache
     sm::BodyDef def = ellipsoid(12, correction, cells);
     def.position = {0.0, 0.16, 0.0};

@@ -5,6 +5,8 @@
 #include "supermodal/contact.h"
 #include "supermodal/modal.h"
 #include "supermodal/world.h"
+#include "support/world_fixture.h"
+#include "world/modal_system.h"
 
 #include <cmath>
 #include <cstdio>
@@ -19,34 +21,9 @@ namespace mo = supermodal::modal;
 namespace
 {
 
-// The soft ellipsoid of docs/modal.md "Full model and the modal trade": 0.6 × 0.4 × 0.3 m, E 1 MPa,
-// ν 0.3, ρ 1000 kg/m³, a 6×4×3 lattice of 20-node cells (1335 dofs).
 sm::BodyDef ellipsoid(int modes, double zeta, bool correction)
 {
-    sm::BodyDef def = sm::default_body_def();
-    def.shape.radii = {0.3, 0.2, 0.15};
-    def.density = 1000.0;
-    def.young = 1e6;
-    def.poisson = 0.3;
-    def.modal.enabled = true;
-    def.modal.mode_count = modes;
-    def.modal.lattice = {6, 4, 3};
-    def.modal.damping_ratio = zeta;
-    def.modal.static_correction = correction;
-    return def;
-}
-
-// The lattice the world builds for def (modal_basis_def in the world: the body's shape and material).
-sm::ModalBasisDef lattice_of(const sm::BodyDef& def)
-{
-    sm::ModalBasisDef out = sm::default_modal_basis_def();
-    out.shape = def.shape;
-    out.density = def.density;
-    out.young = def.young;
-    out.poisson = def.poisson;
-    out.lattice.cells = def.modal.lattice;
-    out.mode_count = def.modal.mode_count;
-    return out;
+    return sm::test::soft_ellipsoid_def(modes, zeta, correction);
 }
 
 sm::WorldDef zero_g(double dt)
@@ -62,11 +39,9 @@ double norm(const sm::Vec3& v)
     return std::sqrt(sm::dot(v, v));
 }
 
-// Body-frame displacement of a rest point (shape frame; the ellipsoid's centre of mass is its origin).
 sm::Vec3 displacement(const sm::World& world, sm::Entity body, const sm::Vec3& rest)
 {
-    const sm::Vec3 p = sm::body_deformed_point(world, body, rest);
-    return sm::inv_rotate(sm::body_orientation(world, body), p - sm::body_position(world, body)) - rest;
+    return sm::test::body_frame_displacement(world, body, rest);
 }
 
 // A nodal field at a rest point through the basis's shape functions.
@@ -105,11 +80,11 @@ TEST(StaticCorrection, HeldLoadsGiveTheFullLatticeStaticAnswer)
 {
     const sm::Vec3 top{0.0, 0.0, 0.15}, bottom{0.0, 0.0, -0.15}, force{0.0, 0.0, -60.0};
     const sm::BodyDef def = ellipsoid(12, 1.0, true);
-    auto full = mo::FullModel::build(lattice_of(def), mo::fit_rayleigh(0.02, 100.0, 200.0));
+    auto full = mo::FullModel::build(sm::modal_basis_def(def), mo::fit_rayleigh(0.02, 100.0, 200.0));
     ASSERT_TRUE(full.has_value());
     const mo::PointLoad loads[] = {{top, force}, {bottom, -1.0 * force}};
     const std::vector<double> nodal = (*full)->static_solution(loads);
-    auto basis = sm::build_modal_basis(lattice_of(def));
+    auto basis = sm::build_modal_basis(sm::modal_basis_def(def));
     ASSERT_TRUE(basis.has_value());
     const sm::Vec3 reference = at_point(*basis, nodal, top);
     ASSERT_GT(norm(reference), 1e-4); // a real dent: ~mm under 60 N on E = 1 MPa
@@ -133,13 +108,13 @@ StruckErrors struck_errors(int modes)
 {
     const sm::Vec3 struck{0.1, 0.0, 0.14}, force{5.0, 10.0, -100.0};
     const sm::BodyDef def = ellipsoid(modes, 0.02, false);
-    auto basis = sm::build_modal_basis(lattice_of(def));
+    auto basis = sm::build_modal_basis(sm::modal_basis_def(def));
     EXPECT_TRUE(basis.has_value());
     if (!basis)
         return {};
     const double w1 = 2 * std::numbers::pi * basis->frequencies_hz[0];
     const double w6 = 2 * std::numbers::pi * basis->frequencies_hz[5];
-    auto full = mo::FullModel::build(lattice_of(def), mo::fit_rayleigh(0.02, w1, w6));
+    auto full = mo::FullModel::build(sm::modal_basis_def(def), mo::fit_rayleigh(0.02, w1, w6));
     EXPECT_TRUE(full.has_value());
     if (!full)
         return {};
@@ -192,10 +167,7 @@ sm::World dropped_on_floor(int threads)
     wd.dt = 1.0 / 60.0;
     wd.thread_count = threads;
     sm::World world(wd);
-    sm::BodyDef floor = sm::default_body_def();
-    floor.shape.type = sm::ShapeType::Plane;
-    floor.motion = sm::MotionType::Static;
-    (void)sm::create_body(world, floor);
+    (void)sm::test::add_ground(world);
     sm::BodyDef def = ellipsoid(12, 0.2, true);
     def.position = {0.0, 0.25, 0.0};
     def.orientation = sm::Quat{0.9659258, 0.0, 0.0, 0.2588190}; // 30° about z: not symmetric
@@ -246,10 +218,7 @@ TEST_P(StaticCorrectionRest, RestingBodySinksByItsLocalDentAndSleeps)
         wd.contact.solver = GetParam();
         wd.substep_count = GetParam() == sm::ContactSolver::Soft ? 4 : 30; // penalty: small steps
         sm::World world(wd);
-        sm::BodyDef floor = sm::default_body_def();
-        floor.shape.type = sm::ShapeType::Plane;
-        floor.motion = sm::MotionType::Static;
-        (void)sm::create_body(world, floor);
+        (void)sm::test::add_ground(world);
         sm::BodyDef def = ellipsoid(12, 0.2, correction);
         def.position = {0.0, 0.16, 0.0};
         def.orientation = sm::Quat{0.7071068, 0.7071068, 0.0, 0.0}; // the 0.15 m axis up

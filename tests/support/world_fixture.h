@@ -3,8 +3,10 @@
 
 #include "supermodal/assert.h"
 #include "supermodal/body.h"
+#include "supermodal/modal.h"
 #include "supermodal/world.h"
 
+#include <array>
 #include <cmath>
 
 namespace supermodal::test
@@ -41,6 +43,33 @@ inline BodyDef soft_ball_def(Vec3 position, double damping_ratio)
     def.young = 2e5;
     def.modal.damping_ratio = damping_ratio;
     return def;
+}
+
+/// The soft ellipsoid of the modal trade (docs/modal.md): 0.6 × 0.4 × 0.3 m, E 1 MPa, ν 0.3, ρ 1000 kg/m³,
+/// r modes of a lattice of 20-node cells (6×4×3: 1335 dofs), damping ratio zeta [-], with or without the
+/// static correction.
+inline BodyDef soft_ellipsoid_def(int modes, double zeta, bool correction,
+                                  std::array<int, 3> cells = {6, 4, 3})
+{
+    BodyDef def = default_body_def();
+    def.shape.radii = {0.3, 0.2, 0.15};
+    def.density = 1000.0;
+    def.young = 1e6;
+    def.poisson = 0.3;
+    def.modal.enabled = true;
+    def.modal.mode_count = modes;
+    def.modal.lattice = cells;
+    def.modal.damping_ratio = zeta;
+    def.modal.static_correction = correction;
+    return def;
+}
+
+/// Body-frame displacement [m] of a rest point (shape frame) of a body whose shape origin is its centre
+/// of mass: where body_deformed_point puts it, back in the body frame, less where it was.
+inline Vec3 body_frame_displacement(const World& world, Entity body, const Vec3& rest)
+{
+    const Vec3 p = body_deformed_point(world, body, rest);
+    return inv_rotate(body_orientation(world, body), p - body_position(world, body)) - rest;
 }
 
 /// A static plane through offset·normal [m] with the given friction coefficient [-].

@@ -170,13 +170,6 @@ void StaticColumns::get(const AccuracyModel& m, std::span<const int> dofs, std::
     }
 }
 
-size_t StaticColumns::size() const
-{
-    const std::lock_guard<std::mutex> lock(m_mutex);
-    return static_cast<size_t>(
-        std::count_if(m_columns.begin(), m_columns.end(), [](const auto& c) { return c != nullptr; }));
-}
-
 void static_correction(const AccuracyModel& m, const ModalBasis& basis, std::span<const double> nodal_force,
                        std::span<const double> omega, size_t shown, std::span<double> out)
 {

@@ -29,11 +29,9 @@ class StaticColumns
   public:
     /// The columns of `dofs` (ascending), made where missing; valid while the model lives.
     void get(const AccuracyModel& model, std::span<const int> dofs, std::vector<const double*>& out);
-    /// Columns made so far [-].
-    [[nodiscard]] size_t size() const;
 
   private:
-    mutable std::mutex m_mutex;
+    std::mutex m_mutex;
     std::vector<std::unique_ptr<const std::vector<double>>> m_columns; ///< (3n) null until made.
 };
 

@@ -486,8 +486,18 @@ bool integrate_modes(const ModalModel& m, const ModalSubstepMaps& maps, double h
     return switched;
 }
 
-// Mode acceleration: the static answer of the modes the surface does not show to this substep's contact
-// and host loads, added to the surface until the next substep replaces it.
+// g = Fᵀu / Σ f·depth [-]: the work the contact loads F do on their dent u over the work they do on the
+// contact springs (for one point, k·c); 0 where no spring is compressed.
+double loop_gain(const std::vector<double>& load, const std::vector<double>& dent, double spring_work)
+{
+    if (!(spring_work > 0.0))
+        return 0.0;
+    double dent_work = 0.0;
+    for (size_t i = 0; i < load.size(); ++i)
+        dent_work += load[i] * dent[i];
+    return std::max(dent_work, 0.0) / spring_work;
+}
+
 // Mode acceleration: the static answer of the modes the surface does not show to this substep's loads,
 // shown on the surface until the next substep replaces it. Host loads enter at once. Contact loads feed
 // back: the dent moves the surface the contact force comes from, and on a soft body the dent can be far
@@ -511,14 +521,7 @@ void correct_statically(double h, const ModalModel& m, ModalLoads& io, ModalStat
                   (io.has_solved_nodal_load ? io.solved_nodal_load[i] : 0.0);
     if (full != nullptr && contact)
         modal::static_correction(*full, *m.basis, load, m.omega, s.active, answer);
-    double gain = 0.0;
-    if (contact && io.spring_work > 0.0) {
-        double dent_work = 0.0;
-        for (size_t i = 0; i < n; ++i)
-            dent_work += load[i] * answer[i];
-        gain = std::max(dent_work, 0.0) / io.spring_work;
-    }
-    io.spring_work = 0.0;
+    const double gain = contact ? loop_gain(load, answer, io.spring_work) : 0.0;
     const double share = std::min(1.0 - std::exp(-h / k_contact_correction_time), 1.0 / (1.0 + gain));
     for (size_t i = 0; i < n; ++i)
         s.contact_correction[i] += share * (answer[i] - s.contact_correction[i]);
@@ -550,6 +553,7 @@ uint8_t step_modal_body(double h, ModalBody& b)
     const ModalModel& m = *b.model;
     if (m.static_correction)
         correct_statically(h, m, b.loads, b.state);
+    b.loads.spring_work = 0.0;
     project_loads(m, b.state, b.loads, b.stats);
     if (m.adaptive())
         choose_active(b);
